@@ -1,0 +1,21 @@
+#pragma once
+#include <string>
+#include <vector>
+
+namespace gearpatch::cli {
+
+/// One subcommand of `gearpatch`: its name, a one-line summary for the
+/// command list, and the function that runs it on the remaining arguments
+/// and returns the exit status (0 ok, 1 verify failed, 2 bad input, 3 simulator).
+struct Command {
+  const char* name;
+  const char* summary;
+  int (*run)(const std::vector<std::string>& args);
+};
+
+/// The static table of subcommands, in the order `--help` lists them.
+const std::vector<Command>& commands();
+
+int run_simulate(const std::vector<std::string>& args);
+
+}  // namespace gearpatch::cli

@@ -1,0 +1,12 @@
+#include "cli/command.h"
+
+namespace gearpatch::cli {
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> table = {
+      {"simulate", "run the reference model; CSV in physical units", run_simulate},
+  };
+  return table;
+}
+
+}  // namespace gearpatch::cli

@@ -1,0 +1,64 @@
+// gearpatch: gear drive → analog computer program → ngspice → verified.
+#include <clocale>
+#include <cstdio>
+#include <exception>
+#include <fmt/format.h>
+#include <string>
+#include <vector>
+
+#include "cli/command.h"
+#include "common/error.h"
+#include "scene/scene.h"
+
+namespace {
+
+void print_usage() {
+  std::printf(
+      "gearpatch: turns the physical data of a gear drive (two inertias, an elastic\n"
+      "coupling with damping, backlash, bearing and tooth friction, self-locking)\n"
+      "into an analog computer program after Klittich (1966): potentiometer settings\n"
+      "with amplitude and time scaling, and the circuit as an ngspice netlist; runs\n"
+      "ngspice and checks the circuit against a reference model of the same equations.\n\n"
+      "usage: gearpatch <command> SCENE [options]      (gearpatch <command> --help)\n\n"
+      "commands:\n");
+  for (const auto& c : gearpatch::cli::commands()) std::printf("  %-10s %s\n", c.name, c.summary);
+  std::printf(
+      "\n  --help-scene  list every key a scene file may hold\n\n"
+      "exit status: 0 success (verify: pass), 1 verify failed, 2 bad input or usage,\n"
+      "3 the simulator failed (missing, aborted, timed out).\n");
+}
+
+void print_scene_keys() {
+  std::printf("Scene files are INI (Boost.Program_options syntax), SI units, # comments:\n\n");
+  for (const auto& [key, help] : gearpatch::scene_keys())
+    std::printf("  %-34s %s\n", key.c_str(), help.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::setlocale(LC_ALL, "C");
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    print_usage();
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--help-scene") {
+    print_scene_keys();
+    return 0;
+  }
+  for (const auto& command : gearpatch::cli::commands()) {
+    if (args[0] != command.name) continue;
+    try {
+      return command.run({args.begin() + 1, args.end()});
+    } catch (const gearpatch::Error& e) {
+      std::fprintf(stderr, "gearpatch %s: %s\n", command.name, e.what());
+      return e.kind() == gearpatch::Error::Kind::simulator ? 3 : 2;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gearpatch %s: internal error: %s\n", command.name, e.what());
+      return 2;
+    }
+  }
+  std::fprintf(stderr, "gearpatch: unknown command '%s' (see gearpatch --help)\n", args[0].c_str());
+  return 2;
+}

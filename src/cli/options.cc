@@ -1,0 +1,31 @@
+#include "cli/options.h"
+
+#include <iostream>
+
+#include "common/error.h"
+
+namespace gearpatch::cli {
+
+bool parse_arguments(const std::vector<std::string>& args, const std::string& usage,
+                     po::options_description options, po::variables_map& vm, bool scene_required) {
+  options.add_options()("help,h", "show this help");
+  po::options_description all;
+  all.add(options);
+  all.add_options()("scene", po::value<std::vector<std::string>>(), "scene file(s)");
+  po::positional_options_description positional;
+  positional.add("scene", -1);
+  try {
+    po::store(po::command_line_parser(args).options(all).positional(positional).run(), vm);
+    po::notify(vm);
+  } catch (const po::error& e) {
+    throw Error(std::string(e.what()) + " (see --help)");
+  }
+  if (vm.count("help")) {
+    std::cout << usage << "\n\n" << options << "\n";
+    return false;
+  }
+  if (scene_required && !vm.count("scene")) throw Error("no SCENE given (see --help)");
+  return true;
+}
+
+}  // namespace gearpatch::cli

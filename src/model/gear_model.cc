@@ -1,0 +1,249 @@
+#include "model/gear_model.h"
+
+#include <cmath>
+
+#include "model/restitution.h"
+#include "scene/scene.h"
+
+namespace gearpatch {
+
+GearParameters GearParameters::from_scene(const Scene& s) {
+  GearParameters p;
+  p.inertia_primary = s.inertia_primary;
+  p.inertia_secondary = s.inertia_secondary;
+  p.stiffness = s.stiffness;
+  p.half_backlash = s.backlash / 2;
+  p.damping = s.damping ? *s.damping
+                        : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
+  p.bearing_primary = s.bearing_primary;
+  p.bearing_secondary = s.bearing_secondary;
+  p.tooth_friction = 1.0 - s.mesh_efficiency;
+  p.self_locking = s.self_locking;
+  p.drive_torque = s.drive_torque;
+  p.load_torque = s.load_torque;
+  return p;
+}
+
+double GearParameters::effective_inertia() const {
+  return inertia_primary * inertia_secondary / (inertia_primary + inertia_secondary);
+}
+
+std::string to_string(GuardKind k) {
+  switch (k) {
+    case GuardKind::contact_positive: return "contact+";
+    case GuardKind::contact_negative: return "contact-";
+    case GuardKind::release: return "release";
+    case GuardKind::primary_stops: return "primary-stops";
+    case GuardKind::secondary_stops: return "secondary-stops";
+    case GuardKind::primary_breaks_forward: return "primary-breaks+";
+    case GuardKind::primary_breaks_backward: return "primary-breaks-";
+    case GuardKind::secondary_breaks_forward: return "secondary-breaks+";
+    case GuardKind::secondary_breaks_backward: return "secondary-breaks-";
+    case GuardKind::torque_reverses: return "torque-reverses";
+  }
+  return "?";
+}
+
+GearModel::GearModel(const GearParameters& parameters) : p_(parameters) {}
+
+namespace {
+bool in_contact(Contact c) { return c != Contact::free; }
+}  // namespace
+
+ModeDynamics GearModel::dynamics(const Mode& m) const {
+  ModeDynamics d;
+  d.inv_p = m.primary == Shaft::held ? 0.0 : 1.0 / p_.inertia_primary;
+  d.inv_s = m.secondary == Shaft::held ? 0.0 : 1.0 / p_.inertia_secondary;
+  d.force_p = p_.drive_torque - p_.bearing_primary * direction(m.primary);
+  d.force_s = -p_.load_torque - p_.bearing_secondary * direction(m.secondary);
+  // (5.5): M0 − k_z·|M0|·sign φ̇s = M0·(1 − k_z·sign M0·sign φ̇s).
+  d.gain_s = 1.0 - p_.tooth_friction * m.torque_sign * direction(m.secondary);
+  d.coupled = in_contact(m.contact);
+  d.offset = m.contact == Contact::positive ? p_.half_backlash
+           : m.contact == Contact::negative ? -p_.half_backlash : 0.0;
+  d.stiffness = p_.stiffness;
+  d.damping = p_.damping;
+  return d;
+}
+
+LinearForm GearModel::torque_form(const Mode& m) const {
+  if (!in_contact(m.contact)) return {};
+  const double offset = dynamics(m).offset;
+  return {p_.damping, -p_.damping, p_.stiffness, -p_.stiffness * offset};
+}
+
+GearState GearModel::derivative(const Mode& m, const GearState& s) const {
+  const ModeDynamics d = dynamics(m);
+  const double m0 = torque(m, s);
+  return {d.inv_p * (d.force_p - m0), d.inv_s * (d.gain_s * m0 + d.force_s), s.omega_p - s.omega_s};
+}
+
+std::vector<Guard> GearModel::guards(const Mode& m) const {
+  std::vector<Guard> g;
+  const double eps = p_.half_backlash;
+  switch (m.contact) {
+    case Contact::free:
+      g.push_back({GuardKind::contact_positive, {0, 0, -1, eps}});
+      g.push_back({GuardKind::contact_negative, {0, 0, 1, eps}});
+      break;
+    case Contact::positive: g.push_back({GuardKind::release, {0, 0, 1, -eps}}); break;
+    case Contact::negative: g.push_back({GuardKind::release, {0, 0, -1, -eps}}); break;
+    case Contact::linear: break;
+  }
+  const LinearForm m0 = torque_form(m);
+  auto combine = [](double a, const LinearForm& f, double k) {  // a·f + k
+    return LinearForm{a * f.omega_p, a * f.omega_s, a * f.dphi, a * f.constant + k};
+  };
+  if (m.primary == Shaft::forward) g.push_back({GuardKind::primary_stops, {1, 0, 0, 0}});
+  if (m.primary == Shaft::backward) g.push_back({GuardKind::primary_stops, {-1, 0, 0, 0}});
+  if (m.primary == Shaft::held) {  // |M_a − M0| <= k_Rp
+    g.push_back({GuardKind::primary_breaks_forward, combine(1, m0, p_.bearing_primary - p_.drive_torque)});
+    g.push_back({GuardKind::primary_breaks_backward, combine(-1, m0, p_.bearing_primary + p_.drive_torque)});
+  }
+  if (m.secondary == Shaft::forward) g.push_back({GuardKind::secondary_stops, {0, 1, 0, 0}});
+  if (m.secondary == Shaft::backward) g.push_back({GuardKind::secondary_stops, {0, -1, 0, 0}});
+  if (m.secondary == Shaft::held) {  // |M0 − M_L| <= k_Rs + k_z·|M0|, one side locked
+    const double kz = p_.tooth_friction * m.torque_sign;
+    const int engaged = engagement(m);
+    if (!(p_.self_locking && engaged < 0))
+      g.push_back({GuardKind::secondary_breaks_forward,
+                   combine(kz - 1, m0, p_.bearing_secondary + p_.load_torque)});
+    if (!(p_.self_locking && engaged > 0))
+      g.push_back({GuardKind::secondary_breaks_backward,
+                   combine(kz + 1, m0, p_.bearing_secondary - p_.load_torque)});
+  }
+  if (p_.tooth_friction > 0 && in_contact(m.contact) && m.torque_sign != 0)
+    g.push_back({GuardKind::torque_reverses, combine(m.torque_sign, m0, 0)});
+  return g;
+}
+
+int GearModel::engagement(const Mode& m) const {
+  return m.contact == Contact::positive ? 1 : m.contact == Contact::negative ? -1 : 0;
+}
+
+int GearModel::torque_sign_at(const Mode& m, const GearState& s) const {
+  if (p_.tooth_friction == 0 || !in_contact(m.contact)) return 0;
+  const double m0 = torque(m, s);
+  if (m0 != 0) return m0 > 0 ? 1 : -1;
+  const double rate = s.omega_p - s.omega_s;  // at u = 0 the torque grows with u̇
+  if (rate != 0) return rate > 0 ? 1 : -1;
+  return engagement(m) < 0 ? -1 : 1;
+}
+
+Shaft GearModel::resolve_primary(const Mode& m, const GearState& s) const {
+  const double net = p_.drive_torque - torque(m, s);
+  if (net > p_.bearing_primary) return Shaft::forward;
+  if (-net > p_.bearing_primary) return Shaft::backward;
+  return Shaft::held;
+}
+
+Shaft GearModel::resolve_secondary(const Mode& m, const GearState& s) const {
+  const double m0 = torque(m, s);
+  const double net = m0 - p_.load_torque;
+  const double level = p_.bearing_secondary + p_.tooth_friction * std::abs(m0);
+  const int engaged = engagement(m);
+  if (net > level && !(p_.self_locking && engaged < 0)) return Shaft::forward;
+  if (-net > level && !(p_.self_locking && engaged > 0)) return Shaft::backward;
+  return Shaft::held;
+}
+
+/// After the contact changed: the self-locking reset (the secondary cannot
+/// move against the engagement, so k_Re → ∞ stops it at once), the torque
+/// sign, and shafts at rest re-examined against their new friction levels.
+void GearModel::settle(Mode& m, GearState& s) const {
+  if (p_.self_locking && s.omega_s * engagement(m) < 0) {
+    s.omega_s = 0;
+    m.secondary = Shaft::held;
+  }
+  m.torque_sign = torque_sign_at(m, s);
+  if (m.primary == Shaft::held) m.primary = resolve_primary(m, s);
+  if (m.secondary == Shaft::held) m.secondary = resolve_secondary(m, s);
+  m.torque_sign = torque_sign_at(m, s);
+}
+
+Mode GearModel::initial_mode(GearState& s) const {
+  Mode m;
+  const double eps = p_.half_backlash;
+  const double rate = s.omega_p - s.omega_s;
+  if (eps == 0 && !p_.self_locking) {
+    m.contact = Contact::linear;
+  } else if (s.dphi > eps || (s.dphi == eps && (rate > 0 || eps == 0))) {
+    m.contact = Contact::positive;
+  } else if (s.dphi < -eps || (s.dphi == -eps && rate < 0)) {
+    m.contact = Contact::negative;
+  } else {
+    m.contact = Contact::free;
+  }
+  auto start = [](bool friction, double omega) {
+    if (!friction) return Shaft::frictionless;
+    return omega > 0 ? Shaft::forward : omega < 0 ? Shaft::backward : Shaft::held;
+  };
+  m.primary = start(p_.primary_has_friction(), s.omega_p);
+  m.secondary = start(p_.secondary_has_friction(), s.omega_s);
+  settle(m, s);
+  return m;
+}
+
+Mode GearModel::cross(const Mode& from, GuardKind kind, GearState& s) const {
+  Mode m = from;
+  const double eps = p_.half_backlash;
+  switch (kind) {
+    case GuardKind::contact_positive: s.dphi = eps; m.contact = Contact::positive; break;
+    case GuardKind::contact_negative: s.dphi = -eps; m.contact = Contact::negative; break;
+    case GuardKind::release:
+      s.dphi = from.contact == Contact::positive ? eps : -eps;
+      // Without backlash (only kept for self-locking) the flanks change sides at once.
+      m.contact = eps > 0 ? Contact::free
+                : from.contact == Contact::positive ? Contact::negative : Contact::positive;
+      break;
+    case GuardKind::primary_stops: s.omega_p = 0; m.primary = resolve_primary(m, s); break;
+    case GuardKind::secondary_stops:
+      s.omega_s = 0;
+      m.secondary = resolve_secondary(m, s);
+      break;
+    // A break-away is decided by the guard itself: re-resolving at the crossing
+    // could find the torque level equal to rounding and hold the shaft again.
+    case GuardKind::primary_breaks_forward: m.primary = Shaft::forward; break;
+    case GuardKind::primary_breaks_backward: m.primary = Shaft::backward; break;
+    case GuardKind::secondary_breaks_forward: m.secondary = Shaft::forward; break;
+    case GuardKind::secondary_breaks_backward: m.secondary = Shaft::backward; break;
+    case GuardKind::torque_reverses: m.torque_sign = -from.torque_sign; return m;
+  }
+  if (m.contact != from.contact) settle(m, s);
+  else m.torque_sign = torque_sign_at(m, s);
+  return m;
+}
+
+double GearModel::contact_twist(double dphi) const {
+  const double eps = p_.half_backlash;
+  return dphi > eps ? dphi - eps : dphi < -eps ? dphi + eps : 0.0;
+}
+
+double GearModel::kinetic_energy(const GearState& s) const {
+  return 0.5 * (p_.inertia_primary * s.omega_p * s.omega_p +
+                p_.inertia_secondary * s.omega_s * s.omega_s);
+}
+
+double GearModel::spring_energy(const GearState& s) const {
+  const double u = contact_twist(s.dphi);
+  return 0.5 * p_.stiffness * u * u;
+}
+
+double GearModel::momentum(const GearState& s) const {
+  return p_.inertia_primary * s.omega_p + p_.inertia_secondary * s.omega_s;
+}
+
+std::vector<std::string> GearModel::active_terms() const {
+  std::vector<std::string> t = {"inertias (6.1) (6.2)", "coupling spring c (6.8)"};
+  if (p_.damping > 0) t.push_back("coupling damping d (6.8) (6.10)");
+  if (p_.half_backlash > 0) t.push_back("backlash dead zone (6.9)");
+  if (p_.bearing_primary > 0) t.push_back("primary bearing friction (6.5)");
+  if (p_.bearing_secondary > 0) t.push_back("secondary bearing friction (6.6)");
+  if (p_.tooth_friction > 0) t.push_back("tooth friction (5.5)");
+  if (p_.self_locking) t.push_back("self-locking (6.7)");
+  if (p_.drive_torque != 0) t.push_back("drive torque M_a");
+  if (p_.load_torque != 0) t.push_back("load torque");
+  return t;
+}
+
+}  // namespace gearpatch

@@ -1,0 +1,108 @@
+#pragma once
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "model/gear_state.h"
+
+namespace gearpatch {
+
+struct Scene;
+
+/// The physical constants of the equivalent gear (paper sections 3–5), SI.
+struct GearParameters {
+  double inertia_primary = 1;    ///< Θp
+  double inertia_secondary = 1;  ///< Θs
+  double stiffness = 1;          ///< c
+  double damping = 0;            ///< d (from k by the corrected (4.8) if k was given)
+  double half_backlash = 0;      ///< ε
+  double bearing_primary = 0;    ///< k_Rp
+  double bearing_secondary = 0;  ///< k_Rs
+  double tooth_friction = 0;     ///< k_z = 1 − η_z, (5.6)
+  bool self_locking = false;
+  double drive_torque = 0;       ///< M_a
+  double load_torque = 0;        ///< on the secondary, opposing positive rotation
+
+  static GearParameters from_scene(const Scene&);
+  double effective_inertia() const;  ///< Θ = ΘpΘs/(Θp+Θs)
+  bool primary_has_friction() const { return bearing_primary > 0; }
+  bool secondary_has_friction() const {
+    return bearing_secondary > 0 || tooth_friction > 0 || self_locking;
+  }
+};
+
+/// A function of the state that is linear within a mode: a·φ̇p + b·φ̇s + c·Δφ + k.
+/// Every guard of the model is one, which lets both solvers share them.
+struct LinearForm {
+  double omega_p = 0, omega_s = 0, dphi = 0, constant = 0;
+  double operator()(const GearState& s) const {
+    return omega_p * s.omega_p + omega_s * s.omega_s + dphi * s.dphi + constant;
+  }
+};
+
+/// What ends a mode: the mode is valid while the guard's form is >= 0.
+enum class GuardKind {
+  contact_positive, contact_negative, release,
+  primary_stops, secondary_stops,
+  primary_breaks_forward, primary_breaks_backward,
+  secondary_breaks_forward, secondary_breaks_backward,
+  torque_reverses,
+};
+std::string to_string(GuardKind);
+
+struct Guard {
+  GuardKind kind;
+  LinearForm form;
+};
+
+/// Constants of the linear equations of one mode:
+///   φ̇p' = inv_p·(force_p − M0),  φ̇s' = inv_s·(gain_s·M0 + force_s),
+///   M0 = c·u + d·u̇ with u = Δφ − offset while `coupled`, else 0.
+struct ModeDynamics {
+  double inv_p = 0, inv_s = 0, gain_s = 1, force_p = 0, force_s = 0;
+  bool coupled = false;
+  double offset = 0, stiffness = 0, damping = 0;
+};
+
+/// The equation system (6.1)–(6.10) as a hybrid model, with the paper's
+/// misprints corrected: dead-zone contact that transmits torque only outside
+/// the backlash and is released at its edge, Coulomb bearing friction with a
+/// held state at zero speed, tooth friction (5.5), self-locking (5.10) as a
+/// held state (k_Re → ∞). Terms a scene does not need are never evaluated.
+class GearModel {
+ public:
+  explicit GearModel(const GearParameters& parameters);
+  const GearParameters& parameters() const { return p_; }
+
+  ModeDynamics dynamics(const Mode& mode) const;
+  LinearForm torque_form(const Mode& mode) const;  ///< M0 as a function of the state
+  double torque(const Mode& mode, const GearState& s) const { return torque_form(mode)(s); }
+  GearState derivative(const Mode& mode, const GearState& s) const;
+  std::vector<Guard> guards(const Mode& mode) const;
+
+  /// The mode the initial state starts in; may apply the self-locking reset.
+  Mode initial_mode(GearState& state) const;
+  /// Crosses the guard: snaps the state onto the boundary, applies velocity
+  /// resets (self-locking), and returns the new mode.
+  Mode cross(const Mode& mode, GuardKind kind, GearState& state) const;
+
+  double kinetic_energy(const GearState& s) const;
+  double spring_energy(const GearState& s) const;
+  double momentum(const GearState& s) const;  ///< Θp·φ̇p + Θs·φ̇s
+  /// Δφ' of (6.9): the twist beyond the backlash.
+  double contact_twist(double dphi) const;
+
+  /// The terms of (6.1)–(6.10) this scene needs, for reports.
+  std::vector<std::string> active_terms() const;
+
+ private:
+  Shaft resolve_primary(const Mode& mode, const GearState& s) const;
+  Shaft resolve_secondary(const Mode& mode, const GearState& s) const;
+  int torque_sign_at(const Mode& mode, const GearState& s) const;
+  int engagement(const Mode& mode) const;
+  void settle(Mode& mode, GearState& s) const;
+
+  GearParameters p_;
+};
+
+}  // namespace gearpatch

@@ -1,0 +1,248 @@
+#include "scene/scene.h"
+
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+#include <sstream>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "common/numbers.h"
+
+namespace gearpatch {
+namespace po = boost::program_options;
+
+const std::map<std::string, std::string>& scene_keys() {
+  static const std::map<std::string, std::string> keys = {
+      {"name", "scene name (default: the file's stem)"},
+      {"gear.inertia_primary", "Θp, kg·m², > 0"},
+      {"gear.inertia_secondary", "Θs, kg·m², referred to the primary shaft, > 0"},
+      {"gear.stiffness", "c, N·m/rad, > 0"},
+      {"gear.restitution", "k in [0, 1] (give this or damping)"},
+      {"gear.damping", "d, N·m·s/rad, >= 0 (give this or restitution)"},
+      {"gear.backlash", "2ε, rad, total play, >= 0 (default 0)"},
+      {"friction.bearing_primary", "k_Rp, N·m, >= 0 (default 0)"},
+      {"friction.bearing_secondary", "k_Rs, N·m, >= 0 (default 0)"},
+      {"friction.mesh_efficiency", "η_z in (0, 1] (default 1: no tooth friction)"},
+      {"friction.self_locking", "true|false (default false)"},
+      {"drive.torque", "M_a, N·m on the primary (default 0)"},
+      {"drive.load_torque", "N·m on the secondary, opposing positive rotation (default 0)"},
+      {"drive.rated_torque", "M_am from the drive's data, N·m, > 0 (optional)"},
+      {"drive.rated_speed", "φ̇pm = φ̇sm from the drive's data, rad/s, > 0 (optional)"},
+      {"initial.speed_primary", "φ̇p(0), rad/s (default 0)"},
+      {"initial.speed_secondary", "φ̇s(0), rad/s (default 0)"},
+      {"initial.twist", "Δφ(0) = φp − φs, rad (default 0)"},
+      {"run.duration", "s of real time, > 0"},
+      {"run.output_step", "s between output rows, > 0 (default duration/2000)"},
+      {"maxima.drive_torque", "override M_am, N·m, > 0"},
+      {"maxima.speed_primary", "override φ̇pm, rad/s, > 0"},
+      {"maxima.speed_secondary", "override φ̇sm, rad/s, > 0"},
+      {"maxima.relative_speed", "override Δφ̇m, rad/s, > 0"},
+      {"maxima.contact_twist", "override Δφ'm, rad, > 0"},
+      {"maxima.twist", "override Δφm, rad, > 0"},
+      {"maxima.torque", "override M0m, N·m, > 0"},
+      {"machine.unit", "volts per machine unit, > 0 (default 10)"},
+      {"machine.time_scale", "β (machine time = β·real time), > 0, or auto (default)"},
+      {"machine.integrator_constant", "k0, 1/s at weight 1, > 0 (default 1)"},
+      {"machine.input_resistance", "ohms of a weight-1 input, > 0 (default 1e6)"},
+      {"machine.potentiometer_resistance", "ohms, > 0 (default 1e4)"},
+      {"machine.supply", "± supply volts of the hardware op-amps, > unit (default 15)"},
+  };
+  return keys;
+}
+
+std::string Scene::where(const std::string& key) const {
+  auto it = lines.find(key);
+  if (it == lines.end() || it->second == 0) return source;
+  return source + ":" + std::to_string(it->second);
+}
+
+namespace {
+
+// Boost's parser does not report lines, so we find them ourselves for messages.
+std::map<std::string, int> locate_keys(const std::string& text) {
+  std::map<std::string, int> found;
+  std::istringstream in(text);
+  std::string line, section;
+  for (int number = 1; std::getline(in, line); ++number) {
+    auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos) continue;
+    line.erase(0, first);
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    if (line.front() == '[' && line.back() == ']') {
+      section = line.substr(1, line.size() - 2);
+      continue;
+    }
+    auto eq = line.find('=');
+    std::string key = line.substr(0, eq);
+    key.erase(key.find_last_not_of(" \t") + 1);
+    std::string full = section.empty() ? key : section + "." + key;
+    if (!found.count(full)) found[full] = number;
+  }
+  return found;
+}
+
+int first_line_without_equals(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    auto hash = line.find('#');
+    if (hash != std::string::npos) line.erase(hash);
+    auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '[') continue;
+    if (line.find('=') == std::string::npos) return number;
+  }
+  return 0;
+}
+
+/// Reads the raw strings of a scene, one per key, rejecting unknown keys.
+std::map<std::string, std::string> read_values(const std::string& text, Scene& scene) {
+  po::options_description description;
+  for (const auto& [key, help] : scene_keys())
+    description.add_options()(key.c_str(), po::value<std::string>(), help.c_str());
+  std::istringstream in(text);
+  po::parsed_options parsed(&description);
+  try {
+    parsed = po::parse_config_file(in, description, true);
+  } catch (const po::error& e) {
+    int line = first_line_without_equals(text);
+    throw Error(scene.source + (line ? ":" + std::to_string(line) : "") + ": " + e.what());
+  }
+  std::map<std::string, std::string> values;
+  for (const auto& option : parsed.options) {
+    scene.lines.emplace(option.string_key, 0);
+    if (option.unregistered)
+      throw Error(scene.where(option.string_key) + ": " + option.string_key +
+                  ": unknown key (see `gearpatch --help-scene`)");
+    if (values.count(option.string_key))
+      throw Error(scene.where(option.string_key) + ": " + option.string_key + " is given twice");
+    values[option.string_key] = option.value.empty() ? "" : option.value.front();
+  }
+  return values;
+}
+
+/// Typed access to the raw strings with the checks every key shares.
+class Reader {
+ public:
+  Reader(const Scene& scene, std::map<std::string, std::string> values)
+      : scene_(scene), values_(std::move(values)) {}
+
+  bool has(const std::string& key) const { return values_.count(key) != 0; }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& why) const {
+    throw Error(scene_.where(key) + ": " + key + " = " + raw(key) + ": " + why);
+  }
+
+  std::string raw(const std::string& key) const {
+    auto it = values_.find(key);
+    return it == values_.end() ? std::string("(missing)") : it->second;
+  }
+
+  std::optional<double> number(const std::string& key) const {
+    if (!has(key)) return std::nullopt;
+    auto value = parse_finite(values_.at(key));
+    if (!value) fail(key, "not a finite number");
+    return value;
+  }
+
+  double required(const std::string& key) const {
+    if (!has(key)) throw Error(scene_.source + ": " + key + " is missing: " + scene_keys().at(key));
+    return *number(key);
+  }
+
+  double positive(const std::string& key, std::optional<double> fallback = std::nullopt) const {
+    auto value = has(key) || !fallback ? std::optional<double>(required(key)) : fallback;
+    if (*value <= 0) fail(key, "must be > 0");
+    return *value;
+  }
+
+  double non_negative(const std::string& key, double fallback) const {
+    double value = number(key).value_or(fallback);
+    if (value < 0) fail(key, "must be >= 0");
+    return value;
+  }
+
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    const std::string& text = values_.at(key);
+    if (text == "true" || text == "yes" || text == "1") return true;
+    if (text == "false" || text == "no" || text == "0") return false;
+    fail(key, "must be true or false");
+  }
+
+ private:
+  const Scene& scene_;
+  std::map<std::string, std::string> values_;
+};
+
+void read_gear(const Reader& r, Scene& s) {
+  s.inertia_primary = r.positive("gear.inertia_primary");
+  s.inertia_secondary = r.positive("gear.inertia_secondary");
+  s.stiffness = r.positive("gear.stiffness");
+  s.backlash = r.non_negative("gear.backlash", 0);
+  s.restitution = r.number("gear.restitution");
+  s.damping = r.number("gear.damping");
+  if (s.restitution && s.damping)
+    r.fail("gear.damping", "give either restitution or damping, not both");
+  if (!s.restitution && !s.damping)
+    throw Error(s.source + ": [gear] needs restitution (k) or damping (d)");
+  if (s.restitution && (*s.restitution < 0 || *s.restitution > 1))
+    r.fail("gear.restitution", "must be in [0, 1]");
+  if (s.damping && *s.damping < 0) r.fail("gear.damping", "must be >= 0");
+}
+
+void read_friction_and_drive(const Reader& r, Scene& s) {
+  s.bearing_primary = r.non_negative("friction.bearing_primary", 0);
+  s.bearing_secondary = r.non_negative("friction.bearing_secondary", 0);
+  s.mesh_efficiency = r.number("friction.mesh_efficiency").value_or(1.0);
+  if (s.mesh_efficiency <= 0 || s.mesh_efficiency > 1)
+    r.fail("friction.mesh_efficiency", "must be in (0, 1]");
+  s.self_locking = r.boolean("friction.self_locking", false);
+  s.drive_torque = r.number("drive.torque").value_or(0);
+  s.load_torque = r.number("drive.load_torque").value_or(0);
+  if (r.has("drive.rated_torque")) s.rated_torque = r.positive("drive.rated_torque");
+  if (r.has("drive.rated_speed")) s.rated_speed = r.positive("drive.rated_speed");
+}
+
+void read_machine(const Reader& r, Scene& s) {
+  MachineProfile& m = s.machine;
+  m.unit_volts = r.positive("machine.unit", m.unit_volts);
+  m.integrator_constant = r.positive("machine.integrator_constant", m.integrator_constant);
+  m.input_resistance = r.positive("machine.input_resistance", m.input_resistance);
+  m.potentiometer_resistance = r.positive("machine.potentiometer_resistance", m.potentiometer_resistance);
+  m.supply_volts = r.positive("machine.supply", m.supply_volts);
+  if (m.supply_volts <= m.unit_volts)
+    r.fail(r.has("machine.supply") ? "machine.supply" : "machine.unit",
+           "the supply must exceed the machine unit");
+  if (r.has("machine.time_scale") && r.raw("machine.time_scale") != "auto")
+    m.time_scale = r.positive("machine.time_scale");
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& source) {
+  Scene s;
+  s.source = source;
+  s.name = std::filesystem::path(source).stem().string();
+  s.lines = locate_keys(text);
+  Reader r(s, read_values(text, s));
+  if (r.has("name")) s.name = r.raw("name");
+  read_gear(r, s);
+  read_friction_and_drive(r, s);
+  s.speed_primary = r.number("initial.speed_primary").value_or(0);
+  s.speed_secondary = r.number("initial.speed_secondary").value_or(0);
+  s.twist = r.number("initial.twist").value_or(0);
+  s.duration = r.positive("run.duration");
+  if (r.has("run.output_step")) s.output_step = r.positive("run.output_step");
+  for (const auto& [key, help] : scene_keys())
+    if (key.rfind("maxima.", 0) == 0 && r.has(key)) s.maxima[key.substr(7)] = r.positive(key);
+  read_machine(r, s);
+  return s;
+}
+
+Scene load_scene(const std::string& path) { return parse_scene(read_file(path), path); }
+
+}  // namespace gearpatch

@@ -1,0 +1,70 @@
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+
+#include "scene/machine.h"
+
+namespace gearpatch {
+
+/// A gear drive as the user describes it in a scene file: the equivalent
+/// single-stage gear of the paper (sections 3-5) in SI units, its drive,
+/// initial state and run length, and the machine it is to be patched on.
+struct Scene {
+  std::string name;         ///< `name =`, else the file's stem
+  std::string source;       ///< file name used in messages
+
+  // [gear]
+  double inertia_primary = 0;      ///< Θp, kg·m²
+  double inertia_secondary = 0;    ///< Θs, kg·m², referred to the primary shaft
+  double stiffness = 0;            ///< c, N·m/rad
+  std::optional<double> restitution;  ///< k in [0, 1]
+  std::optional<double> damping;      ///< d, N·m·s/rad (either this or k)
+  double backlash = 0;             ///< 2ε, rad, total play
+
+  // [friction]
+  double bearing_primary = 0;      ///< k_Rp, N·m
+  double bearing_secondary = 0;    ///< k_Rs, N·m
+  double mesh_efficiency = 1;      ///< η_z in (0, 1]
+  bool self_locking = false;
+
+  // [drive]
+  double drive_torque = 0;         ///< M_a, N·m, on the primary
+  double load_torque = 0;          ///< on the secondary, opposing positive rotation
+  std::optional<double> rated_torque;  ///< M_am from the drive's data, if given
+  std::optional<double> rated_speed;   ///< φ̇pm = φ̇sm from the drive's data, if given
+
+  // [initial]
+  double speed_primary = 0;        ///< φ̇p(0), rad/s
+  double speed_secondary = 0;      ///< φ̇s(0), rad/s
+  double twist = 0;                ///< Δφ(0), rad
+
+  // [run]
+  double duration = 0;             ///< s of real time
+  std::optional<double> output_step;  ///< s; default duration/2000
+
+  /// [maxima] overrides of the scaling's a-priori estimates, by key
+  /// (drive_torque, speed_primary, speed_secondary, relative_speed,
+  /// contact_twist, twist, torque).
+  std::map<std::string, double> maxima;
+
+  MachineProfile machine;
+
+  /// Line of `section.key` in the source, 0 if unknown; for messages.
+  std::map<std::string, int> lines;
+  /// "file:line: key = value" prefix for a message about one key.
+  std::string where(const std::string& section_key) const;
+};
+
+/// Parses and validates scene text; `source` names it in messages. Throws
+/// Error (kind input) naming file, line and key for any bad input.
+Scene parse_scene(const std::string& text, const std::string& source);
+
+/// Reads and parses a scene file.
+Scene load_scene(const std::string& path);
+
+/// The keys a scene file may hold, "section.key" → one-line description, for
+/// --help and for rejecting unknown keys.
+const std::map<std::string, std::string>& scene_keys();
+
+}  // namespace gearpatch

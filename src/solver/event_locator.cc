@@ -1,0 +1,68 @@
+#include "solver/event_locator.h"
+
+#include <boost/math/tools/roots.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace gearpatch {
+namespace {
+
+/// Refines a root of f in [lo, hi] where f(lo) > 0 >= f(hi).
+double refine(const std::function<double(double)>& f, double lo, double hi, double flo, double fhi) {
+  if (fhi == 0) return hi;
+  std::uintmax_t iterations = 200;
+  boost::math::tools::eps_tolerance<double> tolerance(std::numeric_limits<double>::digits - 3);
+  auto [a, b] = boost::math::tools::toms748_solve(f, lo, hi, flo, fhi, tolerance, iterations);
+  return 0.5 * (a + b);
+}
+
+/// The crossing time of a guard that is >= 0 at `lo` (or on its boundary at
+/// the segment start) and negative at `hi`.
+double crossing_time(const std::function<double(double)>& f, double lo, double hi, double flo,
+                     double fhi) {
+  if (flo > 0) return refine(f, lo, hi, flo, fhi);
+  // On the boundary at the start of the mode: find where it moved inside.
+  for (double width = 0.5 * (hi - lo); width > 0 && lo + width > lo; width *= 0.5) {
+    const double value = f(lo + width);
+    if (value > 0) return refine(f, lo + width, hi, value, fhi);
+  }
+  return lo;  // it never went inside: the mode ends at once
+}
+
+}  // namespace
+
+Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guards, double t0,
+                               const std::function<void(double, double)>& on_interval) {
+  std::vector<double> before(guards.size());
+  const GearState start = segment.state_at(t0);
+  for (std::size_t i = 0; i < guards.size(); ++i) before[i] = guards[i].form(start);
+  double a = t0;
+  for (;;) {
+    const double b = segment.advance();
+    if (!(b > a)) {
+      on_interval(a, a);
+      return {a, std::nullopt};
+    }
+    const GearState end = segment.state_at(b);
+    Crossing first{b, std::nullopt};
+    for (std::size_t i = 0; i < guards.size(); ++i) {
+      const double value = guards[i].form(end);
+      if (value < 0) {
+        auto f = [&](double t) { return guards[i].form(segment.state_at(t)); };
+        const double flo = a == t0 ? before[i] : std::max(before[i], 0.0);
+        const double t = crossing_time(f, a, b, flo, value);
+        if (t < first.time || !first.kind) first = {t, guards[i].kind};
+      }
+      before[i] = value;
+    }
+    if (first.kind) {
+      on_interval(a, first.time);
+      return first;
+    }
+    on_interval(a, b);
+    a = b;
+  }
+}
+
+}  // namespace gearpatch

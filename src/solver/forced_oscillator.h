@@ -1,0 +1,33 @@
+#pragma once
+
+namespace gearpatch {
+
+/// The exact solution of u'' + δ·u' + κ·u = f from u(0), u'(0), for any
+/// damping (under-, critically, over-damped) and for κ = δ = 0 (free flight:
+/// a parabola). Within a mode of the gear model the relative twist obeys
+/// exactly this, so the exact solver is exact to rounding.
+class ForcedOscillator {
+ public:
+  ForcedOscillator(double kappa, double delta, double force, double u0, double v0);
+
+  /// u(t) and u'(t).
+  void at(double t, double& u, double& v) const;
+
+  /// A time step that samples every root of a + b·t + u-like terms: 1/16 of a
+  /// period when oscillating, a quarter of the fastest decay time otherwise; 0
+  /// in free flight (where `vertex` gives the only turning point).
+  double sampling_step() const;
+  /// The step once the fast part has decayed (equal to sampling_step() unless over-damped).
+  double slowest_sampling_step() const;
+  /// The time of u's extremum in free flight (negative if none ahead).
+  double vertex() const;
+  bool oscillating() const { return kappa_ > 0; }
+
+ private:
+  double kappa_, delta_, force_, u0_, v0_;
+  double rest_ = 0;    ///< f/κ, the equilibrium
+  double decay_ = 0;   ///< a = −δ/2
+  double disc_ = 0;    ///< κ − a²
+};
+
+}  // namespace gearpatch

@@ -1,0 +1,42 @@
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "model/gear_model.h"
+#include "solver/segment.h"
+#include "solver/trajectory.h"
+
+namespace gearpatch {
+
+struct Scene;
+
+/// What the run is asked for: length, output grid, and the bound on events
+/// that stops a run whose event count would grow without bound.
+struct RunSpec {
+  double duration = 1;
+  double output_step = 1e-3;
+  std::size_t max_events = 5'000'000;
+
+  /// The scene's duration and output step (default: 2000 intervals).
+  static RunSpec from_scene(const Scene& scene);
+};
+
+/// The scene's initial speeds and twist.
+GearState initial_state(const Scene& scene);
+
+/// Integrates the hybrid model from `initial`: mode by mode, each segment
+/// from `stepper`, each mode ended by the first guard crossing; the observer
+/// sees the output grid and the events. Throws Error if the run makes no
+/// progress (events without time passing) or exceeds max_events.
+void integrate(const GearModel& model, Stepper& stepper, GearState initial, const RunSpec& spec,
+               Observer& observer);
+
+/// Which reference solver to use.
+enum class SolverKind { exact, adaptive };
+SolverKind parse_solver(const std::string& name);
+
+/// The one-call entry point: integrate with the named solver and record.
+Trajectory simulate(const GearModel& model, const GearState& initial, const RunSpec& spec,
+                    SolverKind solver = SolverKind::exact, double tolerance = 1e-10);
+
+}  // namespace gearpatch

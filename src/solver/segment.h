@@ -1,0 +1,35 @@
+#pragma once
+#include <memory>
+
+#include "model/gear_model.h"
+
+namespace gearpatch {
+
+/// The solution inside one mode, revealed interval by interval: the event
+/// locator looks for guard sign changes on each interval and refines them on
+/// `state_at`, which is valid at least on the last interval handed out.
+class Segment {
+ public:
+  virtual ~Segment() = default;
+  /// Extends the known solution; returns the new end time (at most the horizon).
+  virtual double advance() = 0;
+  virtual GearState state_at(double t) const = 0;
+};
+
+/// Makes the segment of one mode; the exact solver and the adaptive one are
+/// two steppers behind this interface.
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode,
+                                         const GearState& state, double t0, double horizon) = 0;
+};
+
+/// Closed-form solution of each mode: exact to rounding.
+std::unique_ptr<Stepper> make_exact_stepper();
+/// Boost.Odeint's dense-output Dormand–Prince 5(4) with the given relative
+/// and absolute tolerance: for inputs that are not piecewise constant, and the
+/// other end of the speed/accuracy trade.
+std::unique_ptr<Stepper> make_adaptive_stepper(double tolerance);
+
+}  // namespace gearpatch
