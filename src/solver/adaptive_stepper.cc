@@ -21,7 +21,9 @@ class AdaptiveSegment : public Segment {
   AdaptiveSegment(const GearModel& model, const Mode& mode, const GearState& s, double t0,
                   double horizon, double tolerance)
       : model_(model), mode_(mode), horizon_(horizon),
-        stepper_(odeint::make_dense_output(tolerance, tolerance,
+        // The local error per step is set 1000 times below the tolerance so that the
+        // global error over a run of a few thousand steps stays within it.
+        stepper_(odeint::make_dense_output(tolerance / 1000, tolerance / 1000,
                                            odeint::runge_kutta_dopri5<Vector>())) {
     stepper_.initialize(to_vector(s), t0, initial_step(model, mode, horizon - t0));
   }

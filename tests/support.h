@@ -1,0 +1,35 @@
+#pragma once
+// Helpers shared by the tests: scenes built from text, example scene paths,
+// running the gearpatch binary.
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace gearpatch::testing {
+
+/// Path of a file in the source tree (scenes/bild5a.ini, ...).
+inline std::string source_path(const std::string& relative) {
+  return std::string(GEARPATCH_SOURCE_DIR) + "/" + relative;
+}
+
+/// The example scenes that ship in scenes/.
+inline std::vector<std::string> example_scenes() {
+  return {"bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c", "driven"};
+}
+
+inline Scene example_scene(const std::string& name) {
+  return load_scene(source_path("scenes/" + name + ".ini"));
+}
+
+/// A frictionless scene with the given [gear] lines appended to defaults.
+inline std::string gear_scene(const std::string& gear, const std::string& rest = "",
+                              double duration = 3.0) {
+  return "[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstiffness = 100\n" + gear +
+         "\n" + rest + "\n[run]\nduration = " + std::to_string(duration) + "\n";
+}
+
+/// Runs a shell command; returns its exit status and puts stdout+stderr in `output`.
+int run_command(const std::string& command, std::string& output);
+
+}  // namespace gearpatch::testing

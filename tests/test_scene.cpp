@@ -1,0 +1,125 @@
+// Scene files: parsing, defaults, and one test per class of bad input, each
+// asserting that the message names the file, the line and the key.
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+
+#include "common/error.h"
+#include "support.h"
+
+using namespace gearpatch;
+using gearpatch::testing::gear_scene;
+
+namespace {
+std::string error_of(const std::string& text) {
+  try {
+    parse_scene(text, "bad.ini");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::input);
+    return e.what();
+  }
+  FAIL("no error for:\n" << text);
+  return "";
+}
+}  // namespace
+
+TEST_CASE("a scene file is read with its defaults", "[scene]") {
+  const Scene s = testing::example_scene("bild5b");
+  CHECK(s.name == "bild5b");
+  CHECK(s.inertia_primary == 1.0);
+  CHECK(s.stiffness == 100.0);
+  CHECK(*s.restitution == 0.5);
+  CHECK(!s.damping);
+  CHECK(s.backlash == 0.2);
+  CHECK(s.mesh_efficiency == 1.0);
+  CHECK(s.bearing_primary == 0.0);
+  CHECK(s.duration == 3.0);
+  CHECK(s.machine.unit_volts == 10.0);
+  CHECK(!s.machine.time_scale);
+}
+
+TEST_CASE("every example scene parses", "[scene]") {
+  for (const auto& name : testing::example_scenes()) CHECK_NOTHROW(testing::example_scene(name));
+}
+
+TEST_CASE("an unknown key is named with file and line", "[scene]") {
+  const auto message = error_of(gear_scene("restitution = 1\nstifness = 3"));
+  CHECK_THAT(message, Catch::Contains("bad.ini:6") && Catch::Contains("gear.stifness") &&
+                          Catch::Contains("unknown key"));
+}
+
+TEST_CASE("a value that is not a number is named", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = half")),
+             Catch::Contains("bad.ini:5: gear.restitution = half: not a finite number"));
+  CHECK_THAT(error_of(gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1.0x")),
+             Catch::Contains("initial.speed_primary = 1.0x: not a finite number"));
+}
+
+TEST_CASE("NaN and infinity are refused", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = nan")), Catch::Contains("not a finite number"));
+  CHECK_THAT(error_of(gear_scene("restitution = 1", "[drive]\ntorque = inf")),
+             Catch::Contains("drive.torque = inf: not a finite number"));
+}
+
+TEST_CASE("inertia and stiffness must be positive", "[scene]") {
+  const std::string text =
+      "[gear]\ninertia_primary = 0\ninertia_secondary = 1\nstiffness = 1\nrestitution = 1\n[run]\nduration = 1\n";
+  CHECK_THAT(error_of(text), Catch::Contains("bad.ini:2: gear.inertia_primary = 0: must be > 0"));
+  const std::string soft =
+      "[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstiffness = -5\nrestitution = 1\n[run]\nduration = 1\n";
+  CHECK_THAT(error_of(soft), Catch::Contains("bad.ini:4: gear.stiffness = -5: must be > 0"));
+}
+
+TEST_CASE("restitution must lie in [0, 1]", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 1.5")),
+             Catch::Contains("bad.ini:5: gear.restitution = 1.5: must be in [0, 1]"));
+  CHECK_THAT(error_of(gear_scene("restitution = -0.1")), Catch::Contains("must be in [0, 1]"));
+}
+
+TEST_CASE("restitution and damping exclude each other", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 0.5\ndamping = 3")),
+             Catch::Contains("gear.damping = 3: give either restitution or damping, not both"));
+  CHECK_THAT(error_of(gear_scene("")), Catch::Contains("needs restitution (k) or damping (d)"));
+}
+
+TEST_CASE("efficiency must lie in (0, 1]", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 1", "[friction]\nmesh_efficiency = 0")),
+             Catch::Contains("friction.mesh_efficiency = 0: must be in (0, 1]"));
+  CHECK_THAT(error_of(gear_scene("restitution = 1", "[friction]\nmesh_efficiency = 1.2")),
+             Catch::Contains("must be in (0, 1]"));
+}
+
+TEST_CASE("backlash and friction must not be negative", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 1\nbacklash = -0.1")),
+             Catch::Contains("gear.backlash = -0.1: must be >= 0"));
+  CHECK_THAT(error_of(gear_scene("restitution = 1", "[friction]\nbearing_secondary = -2")),
+             Catch::Contains("friction.bearing_secondary = -2: must be >= 0"));
+}
+
+TEST_CASE("duration must be positive", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 1", "", 0.0)),
+             Catch::Contains("run.duration = 0.000000: must be > 0"));
+}
+
+TEST_CASE("a key given twice and a line without '=' are refused", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 1\nrestitution = 0.5")),
+             Catch::Contains("gear.restitution is given twice"));
+  CHECK_THAT(error_of("[gear]\ninertia_primary 1\n"), Catch::Contains("bad.ini:2"));
+}
+
+TEST_CASE("the CLI exits with status 2 on a bad scene and writes nothing", "[scene][cli]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "gearpatch-scene-test";
+  fs::create_directories(dir);
+  const fs::path scene = dir / "bad.ini", out = dir / "out.csv";
+  fs::remove(out);
+  FILE* f = std::fopen(scene.c_str(), "w");
+  std::fputs(gear_scene("restitution = 2").c_str(), f);
+  std::fclose(f);
+  std::string output;
+  const int status = testing::run_command(
+      std::string(GEARPATCH_BINARY) + " simulate " + scene.string() + " -o " + out.string(), output);
+  CHECK(status == 2);
+  CHECK_THAT(output, Catch::Contains("bad.ini:5: gear.restitution = 2: must be in [0, 1]"));
+  CHECK(!fs::exists(out));
+}

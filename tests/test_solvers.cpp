@@ -1,0 +1,112 @@
+// The solvers: the closed form against its differential equation, events
+// located to machine precision, and the adaptive solver converging on the
+// exact one as its tolerance tightens.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "model/gear_model.h"
+#include "solver/forced_oscillator.h"
+#include "solver/integrate.h"
+#include "support.h"
+
+using namespace gearpatch;
+
+namespace {
+
+/// Largest difference between two runs on the same grid, as a fraction of
+/// each signal's full scale in the reference.
+double scaled_difference(const Trajectory& reference, const Trajectory& other) {
+  REQUIRE(reference.samples.size() == other.samples.size());
+  double scale[4] = {0, 0, 0, 0}, worst = 0;
+  auto columns = [](const Sample& s) { return std::array<double, 4>{s.omega_p, s.omega_s, s.dphi, s.m0}; };
+  for (const Sample& s : reference.samples)
+    for (int i = 0; i < 4; ++i) scale[i] = std::max(scale[i], std::abs(columns(s)[i]));
+  for (std::size_t k = 0; k < reference.samples.size(); ++k) {
+    const auto a = columns(reference.samples[k]), b = columns(other.samples[k]);
+    for (int i = 0; i < 4; ++i)
+      if (scale[i] > 0) worst = std::max(worst, std::abs(a[i] - b[i]) / scale[i]);
+  }
+  return worst;
+}
+
+Trajectory run_example(const std::string& name, SolverKind solver, double tolerance = 1e-10) {
+  const Scene scene = testing::example_scene(name);
+  const GearModel model(GearParameters::from_scene(scene));
+  return simulate(model, initial_state(scene), RunSpec::from_scene(scene), solver, tolerance);
+}
+
+}  // namespace
+
+TEST_CASE("the closed form solves its differential equation in every damping regime", "[solver]") {
+  struct Case { double kappa, delta; const char* regime; };
+  const Case cases[] = {{200, 0, "undamped"}, {200, 5, "under-damped"},
+                        {200, 2 * std::sqrt(200.0), "critical"}, {200, 60, "over-damped"},
+                        {200, 1e4, "stiffly over-damped"}};
+  for (const Case& c : cases) {
+    INFO(c.regime);
+    const ForcedOscillator osc(c.kappa, c.delta, 3.0, 0.2, -1.5);
+    double u, v;
+    osc.at(0, u, v);
+    CHECK(u == Approx(0.2).epsilon(1e-15));
+    CHECK(v == Approx(-1.5).epsilon(1e-15));
+    for (double t : {0.01, 0.1, 0.7, 2.0}) {
+      const double h = 1e-5;
+      double up, vp, um, vm;
+      osc.at(t + h, up, vp);
+      osc.at(t - h, um, vm);
+      osc.at(t, u, v);
+      const double accel = (vp - vm) / (2 * h);
+      CHECK((up - um) / (2 * h) == Approx(v).margin(1e-6));
+      CHECK(accel + c.delta * v + c.kappa * u == Approx(3.0).margin(1e-5 * (1 + c.delta)));
+    }
+  }
+}
+
+TEST_CASE("the closed form is continuous through critical damping", "[solver]") {
+  const double critical = 2 * std::sqrt(200.0);
+  for (double t : {0.05, 0.5, 3.0}) {
+    double u_below, v_below, u_at, v_at, u_above, v_above;
+    ForcedOscillator(200, critical * (1 - 1e-9), 1, 0, 1).at(t, u_below, v_below);
+    ForcedOscillator(200, critical, 1, 0, 1).at(t, u_at, v_at);
+    ForcedOscillator(200, critical * (1 + 1e-9), 1, 0, 1).at(t, u_above, v_above);
+    CHECK(u_below == Approx(u_at).margin(1e-9));
+    CHECK(u_above == Approx(u_at).margin(1e-9));
+    CHECK(v_above == Approx(v_at).margin(1e-9));
+  }
+}
+
+TEST_CASE("contact events are located to machine precision", "[solver]") {
+  for (const std::string name : {"bild5b", "bild6b", "driven"}) {
+    const Trajectory t = run_example(name, SolverKind::exact);
+    const double eps = testing::example_scene(name).backlash / 2;
+    INFO(name);
+    for (const auto& e : t.events)
+      if (e.kind == GuardKind::contact_positive || e.kind == GuardKind::contact_negative ||
+          e.kind == GuardKind::release)
+        CHECK(std::abs(std::abs(e.before.dphi) - eps) / eps < 1e-13);
+  }
+}
+
+TEST_CASE("exact and adaptive solvers agree within the tolerance on every example", "[solver]") {
+  for (const auto& name : testing::example_scenes()) {
+    const Trajectory exact = run_example(name, SolverKind::exact);
+    for (double tolerance : {1e-5, 1e-8}) {
+      INFO(name << " at tolerance " << tolerance);
+      const Trajectory adaptive = run_example(name, SolverKind::adaptive, tolerance);
+      CHECK(scaled_difference(exact, adaptive) <= tolerance);
+    }
+  }
+}
+
+TEST_CASE("the adaptive solver converges as its tolerance tightens", "[solver]") {
+  for (const std::string name : {"bild5b", "bild6a", "driven"}) {
+    const Trajectory exact = run_example(name, SolverKind::exact);
+    double previous = INFINITY;
+    for (double tolerance : {1e-3, 1e-5, 1e-7, 1e-9}) {
+      const double error = scaled_difference(exact, run_example(name, SolverKind::adaptive, tolerance));
+      INFO(name << " tolerance " << tolerance << " error " << error);
+      CHECK(error < previous / 10);  // 100× tighter buys at least 10× less error
+      previous = error;
+    }
+  }
+}
