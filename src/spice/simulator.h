@@ -21,6 +21,9 @@ struct Vectors {
 struct RunLimits {
   std::chrono::milliseconds timeout{std::chrono::minutes(5)};
   std::uintmax_t max_output_bytes = std::uintmax_t{1} << 30;
+  /// If not empty, the deck is also written to this path (kept after the run,
+  /// whatever its outcome), and a failure message names it.
+  std::string keep_deck_as;
 };
 
 /// A circuit simulator behind the smallest interface the program needs:
