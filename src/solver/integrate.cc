@@ -62,8 +62,9 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
                               spec.max_events, crossing.time));
     t = crossing.time;
     state = before;
+    const Mode previous = mode;
     mode = model.cross(mode, *crossing.kind, state);
-    observer.event({t, *crossing.kind, before, state, mode});
+    observer.event({t, *crossing.kind, before, state, previous, mode});
   }
   grid.emit_through(spec.duration, mode, [&](double) { return state; }, observer);
 }

@@ -17,7 +17,7 @@ struct EventRecord {
   double t = 0;
   GuardKind kind{};
   GearState before, after;
-  Mode mode_after;
+  Mode mode_before, mode_after;
 };
 
 /// The observer of an integration: it sees every output-grid sample and every event.

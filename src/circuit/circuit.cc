@@ -1,0 +1,234 @@
+#include "circuit/circuit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "scaling/patch.h"
+#include "scene/scene.h"
+
+namespace gearpatch::circuit {
+
+namespace {
+
+/// Builds the circuit block by block; each add_* method is one part of Bild 4.
+class Builder {
+ public:
+  Builder(const Scene& scene, const Patch& patch, Level level)
+      : scene_(scene), patch_(patch), level_(level) {
+    c_.scene = scene.name;
+    c_.beta = patch.beta;
+    c_.duration = scene.duration;
+  }
+
+  Circuit build() {
+    add_parameters();
+    add_primary();
+    add_secondary();
+    add_relative_speed_and_twist();
+    add_transmitted_torque();
+    add_friction();
+    add_tooth_friction();
+    add_self_locking();
+    add_probes();
+    return std::move(c_);
+  }
+
+ private:
+  bool has(const std::string& name) const { return patch_.find(name) != nullptr; }
+
+  AmplifierInput through(const std::string& from, const std::string& pot, std::string ctrl = "") {
+    const Potentiometer* p = patch_.find(pot);
+    if (!p) throw Error("internal: the circuit needs " + pot + " but the settings have none");
+    return {from, pot, static_cast<int>(p->weight), std::move(ctrl)};
+  }
+
+  void amplifier(std::string name, bool integrator, std::string out, std::vector<AmplifierInput> in,
+                 std::string comment, std::string initial = "") {
+    c_.amplifiers.push_back({std::move(name), integrator, std::move(out), std::move(in),
+                             std::move(initial), std::move(comment)});
+  }
+  void inverter(const std::string& name, const std::string& from, const std::string& out,
+                const std::string& comment) {
+    amplifier(name, false, out, {{from, "", 1, ""}}, comment);
+  }
+  void block(std::string name, std::string kind, std::vector<std::string> nodes, std::string param,
+             std::string comment) {
+    c_.blocks.push_back({std::move(name), std::move(kind), std::move(nodes), std::move(param),
+                         std::move(comment)});
+  }
+  void omit(const std::string& what) { c_.omitted.push_back(what); }
+
+  void add_parameters() {
+    for (const Potentiometer& p : patch_.potentiometers) {
+      if (is_initial_value(p.name)) continue;  // written below with their sign
+      c_.parameters.emplace_back(p.name, p.setting);
+      c_.dial_settings[p.name] = p.loaded_setting;
+      c_.weights[p.name] = static_cast<int>(p.weight);
+    }
+    if (patch_.dead_zone) c_.parameters.emplace_back("a", *patch_.dead_zone);
+    if (has("alpha14")) c_.parameters.emplace_back("delta1", patch_.delta1);
+    if (has("alpha_lock")) c_.parameters.emplace_back("delta2", patch_.delta2);
+    // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
+    const Maxima& m = patch_.maxima;
+    if (has("alpha6")) c_.parameters.emplace_back("alpha6", scene_.speed_primary / m.speed_primary);
+    if (has("alpha7")) c_.parameters.emplace_back("alpha7", scene_.speed_secondary / m.speed_secondary);
+    if (has("alpha12")) c_.parameters.emplace_back("alpha12", scene_.twist / m.twist);
+  }
+
+  static bool is_initial_value(const std::string& name) {
+    return name == "alpha6" || name == "alpha7" || name == "alpha12";
+  }
+
+  std::string initial(const std::string& param) { return has(param) ? param : ""; }
+
+  void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
+    std::vector<AmplifierInput> in;
+    if (has("alpha2")) {
+      c_.sources.emplace_back("drive_n", -scene_.drive_torque / patch_.maxima.drive_torque);
+      in.push_back(through("drive_n", "alpha2"));
+    }
+    if (has("alpha1")) in.push_back(through("sign_p", "alpha1"));
+    in.push_back(through("m", "alpha3"));
+    amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm", initial("alpha6"));
+    if (has("alpha6")) c_.initial_conditions.emplace_back("wp", "alpha6");
+  }
+
+  void add_secondary() {  // (6.2): φ̇s' = (M0 − M_Rz − M_Rs − M_Re − M_L)/Θs
+    std::vector<AmplifierInput> in{through("m_n", "alpha4")};
+    if (has("alpha5")) in.push_back(through("sign_s", "alpha5"));
+    if (has("alpha_tooth")) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
+      in.push_back(through("m_abs", "alpha_tooth", "ws_pos"));
+      in.push_back(through("m_abs_n", "alpha_tooth", "ws_neg"));
+    }
+    if (has("alpha_load")) in.push_back(through(scene_.load_torque > 0 ? "ref_p" : "ref_n", "alpha_load"));
+    if (has("alpha_lock")) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
+      in.push_back(through("lock_below", "alpha_lock", "engaged_p"));
+      in.push_back(through("lock_above", "alpha_lock", "engaged_n"));
+    }
+    if (has("alpha_load")) {
+      c_.sources.emplace_back("ref_p", 1.0);
+      c_.sources.emplace_back("ref_n", -1.0);
+    }
+    amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm", initial("alpha7"));
+    if (has("alpha7")) c_.initial_conditions.emplace_back("ws", "alpha7");
+    inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
+  }
+
+  void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)
+    amplifier("sum_dw", false, "dw_n", {through("wp", "alpha8"), through("ws_n", "alpha9")},
+              "(6.3) relative speed: dw_n = -dphi'/dphi'_m");
+    amplifier("int_x", true, "x", {through("dw_n", "alpha10")}, "(6.4) twist: x = +dphi/dphi_m",
+              initial("alpha12"));
+    if (has("alpha12")) c_.initial_conditions.emplace_back("x", "alpha12");
+    if (patch_.dead_zone) {
+      block("dz", "dead_zone", {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
+    } else {
+      inverter("inv_x", "x", "dz_n", "no backlash: (6.9) is the identity, dz_n = -x");
+      omit("block 5 dead zone: no backlash");
+    }
+    amplifier("amp_xp", false, "xp", {through("dz_n", "alpha11")},
+              "(6.9) contact twist: xp = +dphi'/dphi'_m");
+  }
+
+  void add_transmitted_torque() {  // (6.8), (6.10)
+    std::vector<AmplifierInput> in{through("xp", "alpha13")};
+    if (has("alpha14")) {
+      inverter("inv_dw", "dw_n", "dw", "dw = +dphi'/dphi'_m");
+      if (patch_.dead_zone) {
+        block("abs_xp", "abs", {"xp", "xp_abs_n"}, "", "block 8: xp_abs_n = -|xp|");
+        inverter("inv_abs_xp", "xp_abs_n", "xp_abs", "xp_abs = |xp|");
+        block("cmp_damp", "comparator", {"xp_abs", "damp_on"}, "{delta1}",
+              "blocks 7/9, (6.10): damping only in contact, |xp| > delta1");
+        in.push_back(through("dw", "alpha14", "damp_on"));
+      } else {
+        in.push_back(through("dw", "alpha14"));
+        omit("blocks 7/9 damping switch: no backlash, the flanks never part");
+      }
+    } else {
+      omit("damping path alpha14 and blocks 7/9: d = 0 (k = 1)");
+    }
+    amplifier("sum_m0", false, "m_n", in, "(6.8) transmitted torque: m_n = -M0/M0m");
+    inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
+  }
+
+  void add_friction() {  // (6.5), (6.6): blocks 2 and 14
+    const std::string band = format_band(friction_band(level_));
+    if (has("alpha1")) {
+      inverter("inv_wp", "wp", "wp_n", "wp_n = -wp");
+      block("sign_p", "limiter", {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
+    } else {
+      omit("block 2 primary bearing friction: k_Rp = 0");
+    }
+    if (has("alpha5"))
+      block("sign_s", "limiter", {"ws_n", "sign_s"}, band, "block 14, (6.6): sign_s = +sign(ws)");
+    else
+      omit("block 14 secondary bearing friction: k_Rs = 0");
+  }
+
+  void add_tooth_friction() {  // (5.5): M_Rz = k_z·|M0|·sign φ̇s
+    if (!has("alpha_tooth")) {
+      omit("block 8 |M0| and the tooth friction switch: eta_z = 1");
+      return;
+    }
+    block("abs_m", "abs", {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
+    inverter("inv_abs_m", "m_abs_n", "m_abs", "m_abs = |m|");
+    block("cmp_tooth_p", "comparator", {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
+    block("cmp_tooth_n", "comparator", {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
+  }
+
+  void add_self_locking() {  // (6.7): M_Re = k_Re·φ̇s when φ̇s·Δφ' < 0, k_Re → ∞
+    if (!has("alpha_lock")) {
+      omit("blocks 16/17 self-locking: not self-locking");
+      return;
+    }
+    block("lock_char", "limiter", {"ws", "lock_steep_n"}, format_band(lock_band(level_)),
+          "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
+    block("lock_half", "halfwave", {"lock_steep_n", "lock_below", "lock_above"}, "",
+          "lock_below = min(clip, 0), lock_above = max(clip, 0)");
+    block("cmp_lock_p", "comparator", {"xp", "engaged_p"}, "{delta2}", "block 17: engaged, xp > delta2");
+    block("cmp_lock_n", "comparator", {"dz_n", "engaged_n"}, "{delta2}", "block 17: engaged, xp < -delta2");
+  }
+
+  void add_probes() {
+    const Maxima& m = patch_.maxima;
+    c_.probes["omega_p"] = {"wp", 1, m.speed_primary};
+    c_.probes["omega_s"] = {"ws", 1, m.speed_secondary};
+    c_.probes["dphi"] = {"x", 1, m.twist};
+    c_.probes["m0"] = {"m", 1, m.torque};
+  }
+
+  static std::string format_band(double band) { return fmt::format("{}", band); }
+
+  const Scene& scene_;
+  const Patch& patch_;
+  Level level_;
+  Circuit c_;
+};
+
+}  // namespace
+
+std::vector<std::string> Circuit::amplifier_outputs() const {
+  std::vector<std::string> nodes;
+  for (const auto& a : amplifiers) nodes.push_back(a.out);
+  for (const auto& b : blocks)
+    if (b.block != "switch" && b.block != "potentiometer" && b.block != "comparator")
+      for (std::size_t i = 1; i < b.nodes.size(); ++i) nodes.push_back(b.nodes[i]);
+  return nodes;
+}
+
+bool Circuit::uses(const std::string& kind) const {
+  return std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) { return b.block == kind; });
+}
+
+double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
+
+double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
+double lock_band(Level level) { return friction_band(level) / 100; }
+
+Circuit build_circuit(const Scene& scene, const Patch& patch, Level level) {
+  return Builder(scene, patch, level).build();
+}
+
+}  // namespace gearpatch::circuit

@@ -1,0 +1,95 @@
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "circuit/block_library.h"
+
+namespace gearpatch {
+struct Patch;
+struct Scene;
+}  // namespace gearpatch
+
+namespace gearpatch::circuit {
+
+/// One input of an integrator or summer: the node it takes, through which
+/// coefficient potentiometer (a Patch name such as "alpha3", or empty for a
+/// direct weight-1 input), at which weight, and — for the comparator-switched
+/// paths of blocks 7/9 — the control node of the switch behind the potentiometer.
+struct AmplifierInput {
+  std::string from;
+  std::string potentiometer;
+  int weight = 1;
+  std::string switched_by;
+};
+
+/// An inverting integrator or summer of the machine, with its output node.
+struct Amplifier {
+  std::string name;   ///< instance name, e.g. "int_p"
+  bool integrator = false;
+  std::string out;    ///< output node
+  std::vector<AmplifierInput> inputs;
+  std::string initial_value;  ///< .param name of the initial condition (integrators)
+  std::string comment;        ///< what it computes, with the paper's equation
+};
+
+/// A fixed-pin block from the library (dead_zone, limiter, abs, halfwave,
+/// comparator, switch, potentiometer) wired to deck nodes.
+struct FunctionBlock {
+  std::string name;
+  std::string block;
+  std::vector<std::string> nodes;  ///< in the block's pin order
+  std::string parameter;           ///< value expression for its one parameter, or empty
+  std::string comment;
+};
+
+/// How a machine variable of the comparison is read off the deck: the node,
+/// its sign (inverted nodes read −1) and the physical value of 1 MU.
+struct Probe {
+  std::string node;
+  double sign = 1;
+  double full_scale = 1;
+};
+
+/// The analog program of Bild 4 for one scene: amplifiers, function blocks,
+/// sources, the settings as named parameters, and what was left out. Plain
+/// data, rendered to a deck by render_netlist.
+struct Circuit {
+  std::string scene;
+  std::vector<Amplifier> amplifiers;
+  std::vector<FunctionBlock> blocks;
+  std::vector<std::pair<std::string, double>> sources;  ///< node → machine units (DC)
+  std::vector<std::pair<std::string, double>> parameters;  ///< .param name → value (ideal)
+  std::map<std::string, double> dial_settings;  ///< potentiometer → dial position (hardware)
+  std::map<std::string, int> weights;           ///< potentiometer → input weight
+  std::vector<std::pair<std::string, std::string>> initial_conditions;  ///< node → .param name
+  std::vector<std::string> omitted;             ///< blocks left out, with the reason
+  std::map<std::string, Probe> probes;          ///< omega_p, omega_s, dphi, m0
+  double beta = 1;                              ///< machine time = β · real time
+  double duration = 1;                          ///< real time, s
+
+  std::vector<std::string> amplifier_outputs() const;  ///< every node an op-amp drives
+  bool uses(const std::string& block) const;
+};
+
+/// The comparator offsets δ1, δ2 for a level, in machine units. The paper sets
+/// them "by experiment" just above the zero errors and noise of the machine:
+/// the ideal circuit has none, so only the comparator's own smoothing counts
+/// (1e-5 MU); hardware op-amps have millivolt offsets, so 1e-3 MU (10 mV).
+double comparator_offset(Level level);
+
+/// Width of the linear band of the friction characteristic sign(φ̇) (blocks
+/// 2, 14), in machine units: inside it friction acts as a steep viscous term,
+/// which is how the circuit holds a shaft at rest. The ideal level makes it
+/// as narrow as ngspice integrates robustly (1e-5 MU); a diode limiter on a
+/// real op-amp reaches a gain of about 1000 (1e-3 MU). The self-locking
+/// characteristic (block 16) is two orders of magnitude steeper, as section 6 asks.
+double friction_band(Level level);
+double lock_band(Level level);
+
+/// The circuit that solves (6.1)–(6.10) with the scene's settings at the
+/// given level, holding only the blocks the scene needs.
+Circuit build_circuit(const Scene& scene, const Patch& patch, Level level);
+
+}  // namespace gearpatch::circuit

@@ -1,0 +1,122 @@
+#include "circuit/netlist.h"
+
+#include <fmt/format.h>
+#include <set>
+
+#include "common/numbers.h"
+
+namespace gearpatch::circuit {
+namespace {
+
+std::string header(const Circuit& c, Level level, const MachineProfile& m) {
+  std::string text = fmt::format(
+      "* gearpatch: analog computer program for scene '{}' (Klittich 1966, Bild 4), level {}\n"
+      "* machine unit {} V, integrator constant k0 = {}/s, machine time = {} x real time\n"
+      "* every amplifier inverts; node voltages are machine variables x {} V\n",
+      c.scene, level_name(level), format_number(m.unit_volts), format_number(m.integrator_constant),
+      format_number(c.beta), format_number(m.unit_volts));
+  for (const auto& what : c.omitted) text += "* left out: " + what + "\n";
+  return text;
+}
+
+std::string parameters(const Circuit& c, Level level) {
+  std::string text =
+      "\n* Settings, one .param each (edit one line to retune a potentiometer).\n";
+  if (level == Level::hardware)
+    text += "* Hardware: a potentiometer's value is its dial position with the load connected.\n";
+  for (const auto& [name, value] : c.parameters) {
+    auto dial = c.dial_settings.find(name);
+    const double shown = level == Level::hardware && dial != c.dial_settings.end() ? dial->second : value;
+    auto weight = c.weights.find(name);
+    text += fmt::format(".param {}={}", name, format_number(shown));
+    if (weight != c.weights.end()) text += fmt::format("  $ into a weight-{} input", weight->second);
+    text += "\n";
+  }
+  return text;
+}
+
+std::string library(const Circuit& c, Level level, const MachineProfile& m) {
+  std::string text = "\n" + render_models(level, m);
+  std::set<std::string> kinds;
+  for (const auto& b : c.blocks) kinds.insert(b.block);
+  for (const auto& a : c.amplifiers)
+    for (const auto& in : a.inputs) {
+      if (!in.potentiometer.empty()) kinds.insert("potentiometer");
+      if (!in.switched_by.empty()) kinds.insert("switch");
+    }
+  for (const auto& kind : kinds) text += "\n" + render_block(level, kind, m);
+  for (const auto& a : c.amplifiers) {
+    std::vector<Input> pins;
+    for (std::size_t k = 0; k < a.inputs.size(); ++k)
+      pins.push_back({fmt::format("in{}", k + 1), a.inputs[k].weight});
+    text += "\n" + render_amplifier(level, a.integrator ? "integrator" : "summer", "gp_" + a.name, pins, m);
+  }
+  return text;
+}
+
+/// The instance lines of one amplifier and the potentiometers and switches in front of it.
+std::string amplifier_instances(const Amplifier& a) {
+  std::string text = fmt::format("* {}\n", a.comment);
+  std::string pins;
+  for (std::size_t k = 0; k < a.inputs.size(); ++k) {
+    const AmplifierInput& in = a.inputs[k];
+    std::string node = in.from;
+    if (!in.potentiometer.empty()) {
+      const std::string wiper = fmt::format("{}_{}", a.name, k + 1);
+      text += fmt::format("Xpot_{} {} {} gp_potentiometer params: setting={{{}}}\n", wiper, node, wiper,
+                          in.potentiometer);
+      node = wiper;
+    }
+    if (!in.switched_by.empty()) {
+      const std::string after = node + "_sw";
+      text += fmt::format("Xsw_{} {} {} {} gp_switch\n", node, node, after, in.switched_by);
+      node = after;
+    }
+    pins += node + " ";
+  }
+  return text + fmt::format("X{} {}{} gp_{}\n", a.name, pins, a.out, a.name);
+}
+
+std::string program(const Circuit& c, const MachineProfile& m) {
+  std::string text = "\n* Machine references and inputs (DC, in machine units x unit volts)\n";
+  std::set<std::string> seen;
+  for (const auto& [node, mu] : c.sources)
+    if (seen.insert(node).second)
+      text += fmt::format("V{} {} 0 DC {}\n", node, node, format_number(mu * m.unit_volts));
+  text += "\n* The program\n";
+  for (const auto& a : c.amplifiers) text += amplifier_instances(a);
+  for (const auto& b : c.blocks) {
+    text += fmt::format("* {}\nX{}", b.comment, b.name);
+    for (const auto& node : b.nodes) text += " " + node;
+    text += " gp_" + b.block;
+    const auto& info = block_info(b.block);
+    if (!info.param.empty() && !b.parameter.empty())
+      text += fmt::format(" params: {}={}", info.param, b.parameter);
+    text += "\n";
+  }
+  return text;
+}
+
+std::string analysis(const Circuit& c, const MachineProfile& m, const TransientControl& t) {
+  const double stop = c.beta * c.duration;
+  std::string text = "\n* Initial conditions (integrators in IC mode), machine units x unit volts\n";
+  for (const auto& [node, param] : c.initial_conditions)
+    text += fmt::format(".ic v({})={{{}*{}}}\n", node, param, format_number(m.unit_volts));
+  text += fmt::format(
+      "\n* Transient in machine time: {} s of real time x beta {}\n"
+      ".options method={} reltol={} abstol=1e-12 vntol=1e-9 chgtol=1e-16 itl4=100\n"
+      ".tran {} {} 0 {}\n.end\n",
+      format_number(c.duration), format_number(c.beta), t.method, format_number(t.reltol),
+      format_number(stop / t.output_points), format_number(stop), format_number(stop / t.max_step_points));
+  return text;
+}
+
+}  // namespace
+
+std::string render_netlist(const Circuit& c, Level level, const MachineProfile& m,
+                           const TransientControl& control) {
+  return header(c, level, m) + parameters(c, level) + library(c, level, m) + program(c, m) +
+         analysis(c, m, control);
+}
+
+}  // namespace gearpatch::circuit

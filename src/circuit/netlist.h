@@ -1,0 +1,26 @@
+#pragma once
+#include <string>
+
+#include "circuit/block_library.h"
+#include "circuit/circuit.h"
+#include "scene/machine.h"
+
+namespace gearpatch::circuit {
+
+/// The ngspice transient settings written into a deck: the knobs that trade
+/// simulation time for accuracy (measured by `gearpatch bench`).
+struct TransientControl {
+  int output_points = 2000;       ///< rows on the tstep grid over the run
+  double max_step_points = 4000;  ///< tmax = machine run time / this
+  double reltol = 1e-7;
+  std::string method = "gear";    ///< trap or gear
+};
+
+/// Renders the circuit as an ngspice deck at the given level: the settings as
+/// one `.param` each, the block subcircuits from templates/, the instances
+/// with the paper's block numbers in comments, `.ic` for the integrators and
+/// the `.tran` analysis in machine time. Numbers are locale-independent.
+std::string render_netlist(const Circuit& circuit, Level level, const MachineProfile& machine,
+                           const TransientControl& control = {});
+
+}  // namespace gearpatch::circuit

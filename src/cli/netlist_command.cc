@@ -1,0 +1,49 @@
+#include <cstdio>
+#include <fmt/format.h>
+
+#include "circuit/circuit.h"
+#include "circuit/netlist.h"
+#include "cli/command.h"
+#include "cli/options.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "scaling/patch.h"
+#include "scene/scene.h"
+
+namespace gearpatch::cli {
+
+int run_netlist(const std::vector<std::string>& args) {
+  po::options_description options("netlist options");
+  options.add_options()
+      ("level", po::value<std::string>()->default_value("ideal"),
+       "ideal: high-gain op-amps, exact potentiometers, ideal function generators; "
+       "hardware: TL071-class op-amps, resistor and capacitor values of the machine, "
+       "potentiometers as loaded dividers, 1N4148 diodes, DG419-class switches")
+      ("output,o", po::value<std::string>(), "deck file (default stdout)");
+  po::variables_map vm;
+  if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [-o FILE.cir]\n\n"
+                       "Writes the analog computer program of the scene (the paper's Bild 4) as an\n"
+                       "ngspice deck, with only the blocks the scene needs; says which were left out.",
+                       options, vm))
+    return 0;
+  const auto scenes = vm["scene"].as<std::vector<std::string>>();
+  if (scenes.size() != 1) throw Error("netlist takes one SCENE");
+  const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
+  const Scene scene = load_scene(scenes.front());
+  PatchOptions patch_options;
+  patch_options.check_peaks = false;
+  patch_options.comparator_offset = circuit::comparator_offset(level);
+  const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, patch_options), level);
+  const std::string deck = circuit::render_netlist(c, level, scene.machine);
+  if (!vm.count("output")) {
+    std::fputs(deck.c_str(), stdout);
+    return 0;
+  }
+  write_file_atomically(vm["output"].as<std::string>(), deck);
+  std::printf("%s: %zu amplifiers, %zu function blocks, level %s\n", vm["output"].as<std::string>().c_str(),
+              c.amplifiers.size(), c.blocks.size(), std::string(level_name(level)).c_str());
+  for (const auto& what : c.omitted) std::printf("  left out: %s\n", what.c_str());
+  return 0;
+}
+
+}  // namespace gearpatch::cli

@@ -1,0 +1,59 @@
+#include <cstdio>
+#include <fmt/format.h>
+
+#include "cli/command.h"
+#include "cli/options.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "scene/scene.h"
+#include "verify/report.h"
+#include "verify/verify.h"
+
+namespace gearpatch::cli {
+
+int run_verify(const std::vector<std::string>& args) {
+  po::options_description options("verify options");
+  options.add_options()
+      ("level", po::value<std::string>()->default_value("ideal"), "ideal or hardware (see netlist --help)")
+      ("tolerance", po::value<double>(),
+       fmt::format("pass if every signal's maximum error is within this fraction of its full scale, "
+                   "and impact times within this fraction of the run (default {} ideal, {} hardware)",
+                   verify::default_tolerance(circuit::Level::ideal),
+                   verify::default_tolerance(circuit::Level::hardware)).c_str())
+      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
+      ("json", po::value<std::string>(), "write the report as JSON to FILE")
+      ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
+      ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s")
+      ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE");
+  po::variables_map vm;
+  if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
+                       "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
+                       "physical units and compares it with the reference model. Exit status 0:\n"
+                       "pass, 1: fail, 2: bad input, 3: ngspice failed (the deck is kept).",
+                       options, vm))
+    return 0;
+  const auto scenes = vm["scene"].as<std::vector<std::string>>();
+  if (scenes.size() != 1) throw Error("verify takes one SCENE");
+  verify::VerifyOptions o;
+  o.level = circuit::parse_level(vm["level"].as<std::string>());
+  if (vm.count("tolerance")) {
+    o.tolerance = vm["tolerance"].as<double>();
+    if (!(*o.tolerance > 0)) throw Error("--tolerance must be > 0");
+  }
+  if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
+  const double timeout = vm["timeout"].as<double>();
+  if (!(timeout > 0)) throw Error("--timeout must be > 0");
+  o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
+  if (vm.count("keep-deck")) o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
+  const Scene scene = load_scene(scenes.front());
+  std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
+               std::string(level_name(o.level)).c_str());
+  auto simulator = spice::make_batch_ngspice();
+  const verify::VerifyResult result = verify::verify(scene, o, *simulator);
+  if (vm.count("json")) write_file_atomically(vm["json"].as<std::string>(), verify::to_json(result));
+  if (vm.count("plot")) verify::write_plot(result, vm["plot"].as<std::string>());
+  std::fputs(verify::to_table(result).c_str(), stdout);
+  return result.passed ? 0 : 1;
+}
+
+}  // namespace gearpatch::cli

@@ -1,0 +1,128 @@
+#include "verify/report.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "common/atomic_file.h"
+#include "common/error.h"
+
+namespace gearpatch::verify {
+namespace {
+
+const char* unit_of(const std::string& signal) {
+  return signal == "dphi" ? "rad" : signal == "m0" ? "N·m" : "rad/s";
+}
+
+}  // namespace
+
+std::string to_table(const VerifyResult& r) {
+  std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {}\n\n",
+                              r.scene, level_name(r.level), 100 * r.tolerance, r.beta);
+  t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12}  {}\n", "signal", "full scale", "unit",
+                   "max error %", "rms error %", "worst at t [s]");
+  for (const auto& e : r.comparison.signals)
+    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f}  {:.6g}\n", e.name, e.full_scale,
+                     unit_of(e.name), 100 * e.max_error, 100 * e.rms_error, e.time_of_max);
+  for (const auto& e : r.comparison.signals)
+    if (e.jumps > 0)
+      t += fmt::format("  {} jumps {} times in the reference: compared outside +-{:.4g} s of each "
+                       "({} samples left out; the impact times check those instants)\n",
+                       e.name, e.jumps, r.jump_window, e.excluded);
+  const auto& c = r.comparison;
+  if (!c.impacts.empty())
+    t += fmt::format("\nimpacts: reference {}, circuit {}; worst time shift {:.4f} % of the run\n",
+                     c.impacts.size(), c.circuit_impacts, 100 * c.worst_impact_shift);
+  if (!c.restitution.empty()) {
+    t += "restitution per impact (circuit):";
+    for (double k : c.restitution) t += fmt::format(" {:.4f}", k);
+    t += "\n";
+  }
+  if (c.momentum_drift >= 0)
+    t += fmt::format("momentum drift (circuit, no friction): {:.4f} %\n", 100 * c.momentum_drift);
+  for (const auto& o : r.overloads)
+    t += fmt::format("OVERLOAD {} = {:.4g} MU at t = {:.6g} s\n", o.node, o.value, o.t);
+  t += fmt::format("ngspice: {:.2f} s\n\n", r.ngspice_seconds);
+  if (r.passed) return t + "PASS\n";
+  t += "FAIL\n";
+  for (const auto& f : r.failures) t += "  - " + f + "\n";
+  if (!r.diagnosis.empty()) t += "likely causes:\n";
+  for (const auto& d : r.diagnosis) t += "  - " + d + "\n";
+  return t;
+}
+
+std::string to_json(const VerifyResult& r) {
+  nlohmann::json j;
+  j["scene"] = r.scene;
+  j["level"] = std::string(level_name(r.level));
+  j["tolerance"] = r.tolerance;
+  j["passed"] = r.passed;
+  j["beta"] = r.beta;
+  j["ngspice_seconds"] = r.ngspice_seconds;
+  for (const auto& e : r.comparison.signals)
+    j["signals"][e.name] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
+                            {"rms_error", e.rms_error}, {"time_of_max", e.time_of_max},
+                            {"jumps", e.jumps}, {"excluded_samples", e.excluded}};
+  j["jump_window"] = r.jump_window;
+  j["impacts"] = nlohmann::json::array();
+  for (const auto& i : r.comparison.impacts)
+    j["impacts"].push_back({{"reference", i.reference}, {"circuit", i.circuit}});
+  j["circuit_impacts"] = r.comparison.circuit_impacts;
+  j["worst_impact_shift"] = r.comparison.worst_impact_shift;
+  j["restitution"] = r.comparison.restitution;
+  if (r.comparison.momentum_drift >= 0) j["momentum_drift"] = r.comparison.momentum_drift;
+  j["overloads"] = nlohmann::json::array();
+  for (const auto& o : r.overloads) j["overloads"].push_back({{"node", o.node}, {"t", o.t}, {"value", o.value}});
+  j["failures"] = r.failures;
+  j["diagnosis"] = r.diagnosis;
+  return j.dump(2) + "\n";
+}
+
+void write_plot(const VerifyResult& r, const std::string& path) {
+  namespace fs = std::filesystem;
+  const std::string ext = fs::path(path).extension().string();
+  if (ext != ".png" && ext != ".svg") throw Error("--plot " + path + ": give a .png or .svg file");
+  const fs::path dir = fs::temp_directory_path() / fmt::format("gearpatch-plot-{}", ::getpid());
+  fs::create_directories(dir);
+  std::string ref = "# t omega_p omega_s dphi m0\n", circ = ref;
+  for (const auto& s : r.reference.samples)
+    ref += fmt::format("{} {} {} {} {}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0);
+  const auto& c = r.circuit;
+  for (std::size_t i = 0; i < c.t.size(); ++i)
+    circ += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at("omega_p")[i], c.signals.at("omega_s")[i],
+                        c.signals.at("dphi")[i], c.signals.at("m0")[i]);
+  write_file_atomically((dir / "reference.dat").string(), ref);
+  write_file_atomically((dir / "circuit.dat").string(), circ);
+  // Rendered next to the target and renamed, so a failed run leaves no half-written plot.
+  const fs::path target(path);
+  const std::string partial =
+      (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
+  std::string script = fmt::format(
+      "set terminal {} size 1000,900 font ',10'\nset output '{}'\n"
+      "set multiplot layout 4,1 title 'gearpatch verify {} ({}): {}'\nset grid\nset key right top\n",
+      ext == ".png" ? "pngcairo" : "svg", partial, r.scene, level_name(r.level), r.passed ? "PASS" : "FAIL");
+  const char* labels[] = {"phi_p' [rad/s]", "phi_s' [rad/s]", "dphi [rad]", "M0 [N m]"};
+  for (int k = 0; k < 4; ++k)
+    script += fmt::format(
+        "set ylabel \"{}\"\n{}plot '{}' using 1:{} with lines lw 2 lc rgb '#1f77b4' title 'reference', "
+        "'{}' using 1:{} with lines dt 2 lw 1.5 lc rgb '#d62728' title 'circuit'\n",
+        labels[k], k == 3 ? "set xlabel 't [s]'\n" : "", (dir / "reference.dat").string(), k + 2,
+        (dir / "circuit.dat").string(), k + 2);
+  script += "unset multiplot\n";
+  write_file_atomically((dir / "plot.gp").string(), script);
+  const std::string command = fmt::format("gnuplot '{}' 2>'{}'", (dir / "plot.gp").string(),
+                                          (dir / "gnuplot.log").string());
+  const int status = std::system(command.c_str());
+  if (status != 0 || !fs::exists(partial)) {
+    fs::remove(partial);
+    const std::string log = fs::exists(dir / "gnuplot.log") ? read_file((dir / "gnuplot.log").string()) : "";
+    fs::remove_all(dir);
+    throw Error("--plot: gnuplot failed (is it installed? apt-get install gnuplot-nox): " + log);
+  }
+  fs::rename(partial, path);
+  fs::remove_all(dir);
+}
+
+}  // namespace gearpatch::verify

@@ -1,0 +1,87 @@
+#include "verify/verify.h"
+
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "circuit/circuit.h"
+#include "model/gear_model.h"
+#include "scaling/patch.h"
+#include "scene/scene.h"
+#include "solver/integrate.h"
+
+namespace gearpatch::verify {
+
+double default_tolerance(circuit::Level level) {
+  return level == circuit::Level::ideal ? 0.005 : 0.02;
+}
+
+namespace {
+
+void judge(const Patch& patch, VerifyResult& r) {
+  for (const SignalError& e : r.comparison.signals)
+    if (e.max_error > r.tolerance)
+      r.failures.push_back(fmt::format(
+          "{}: error {:.3g} % of full scale at t = {:.6g} s (reference {:.6g}, circuit {:.6g})", e.name,
+          100 * e.max_error, e.time_of_max, e.reference_at_max, e.circuit_at_max));
+  for (const ImpactTime& i : r.comparison.impacts)
+    if (i.circuit < 0)
+      r.failures.push_back(fmt::format("the impact at t = {:.6g} s is missing in the circuit", i.reference));
+  if (r.comparison.worst_impact_shift > r.tolerance)
+    r.failures.push_back(fmt::format("impact times differ by up to {:.3g} % of the run",
+                                     100 * r.comparison.worst_impact_shift));
+  if (r.comparison.circuit_impacts > static_cast<int>(r.comparison.impacts.size()))
+    r.failures.push_back(fmt::format("the circuit has {} impacts, the reference {}",
+                                     r.comparison.circuit_impacts, r.comparison.impacts.size()));
+  for (const Overload& o : r.overloads)
+    r.failures.push_back(fmt::format("overload: amplifier output {} reaches {:.4g} MU at t = {:.6g} s",
+                                     o.node, o.value, o.t));
+  r.passed = r.failures.empty();
+  if (r.passed) return;
+  if (!r.overloads.empty())
+    r.diagnosis.push_back("an amplifier overloads: raise the maximum of that signal (or use settings --autoscale)");
+  for (const Potentiometer& p : patch.potentiometers)
+    if (p.setting < 0.1 && p.setting > 0)
+      r.diagnosis.push_back(fmt::format("{} is set to {:.4g} (< 0.1): small settings are imprecise on "
+                                        "hardware; change β or the maxima", p.name, p.setting));
+  if (r.level == circuit::Level::hardware)
+    r.diagnosis.push_back("hardware level: op-amp offset and bias currents make the integrators "
+                          "drift; diode drops round the dead-zone and friction corners; "
+                          "comparator offsets δ1, δ2 delay the switching");
+}
+
+}  // namespace
+
+VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator) {
+  VerifyResult r;
+  r.scene = scene.name;
+  r.level = options.level;
+  r.tolerance = options.tolerance.value_or(default_tolerance(options.level));
+  PatchOptions patch_options;
+  patch_options.comparator_offset = circuit::comparator_offset(options.level);
+  const Patch patch = make_patch(scene, patch_options);
+  const circuit::Circuit circuit = circuit::build_circuit(scene, patch, options.level);
+  r.beta = circuit.beta;
+  const std::string deck = options.deck_text.value_or(
+      circuit::render_netlist(circuit, options.level, scene.machine, options.transient));
+
+  const auto start = std::chrono::steady_clock::now();
+  const spice::Vectors vectors = simulator.run(deck, options.limits);
+  r.ngspice_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const GearModel model(GearParameters::from_scene(scene));
+  RunSpec spec = RunSpec::from_scene(scene);
+  spec.output_step = scene.duration / options.transient.output_points;
+  r.reference = simulate(model, initial_state(scene), spec);
+  r.circuit = unscale(vectors, circuit, scene.machine.unit_volts);
+  std::vector<std::pair<std::string, double>> scales;
+  for (const char* name : {"omega_p", "omega_s", "dphi", "m0"})
+    scales.emplace_back(name, circuit.probes.at(name).full_scale);
+  r.jump_window = r.tolerance * scene.duration;
+  r.comparison = compare(r.reference, r.circuit, model, scales, scene.duration, r.jump_window);
+  r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
+  judge(patch, r);
+  return r;
+}
+
+}  // namespace gearpatch::verify

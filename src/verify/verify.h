@@ -1,0 +1,52 @@
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "circuit/block_library.h"
+#include "circuit/netlist.h"
+#include "solver/trajectory.h"
+#include "spice/simulator.h"
+#include "verify/compare.h"
+
+namespace gearpatch {
+struct Scene;
+}
+
+namespace gearpatch::verify {
+
+/// What `verify` is asked to do.
+struct VerifyOptions {
+  circuit::Level level = circuit::Level::ideal;
+  std::optional<double> tolerance;      ///< fraction of full scale; default per level
+  std::optional<std::string> deck_text; ///< a deck a person edited, instead of the generated one
+  circuit::TransientControl transient;
+  spice::RunLimits limits;
+};
+
+/// The default pass/fail tolerance of a level, as a fraction of full scale.
+double default_tolerance(circuit::Level level);
+
+/// The verdict and every number behind it.
+struct VerifyResult {
+  std::string scene;
+  circuit::Level level = circuit::Level::ideal;
+  double tolerance = 0;
+  bool passed = false;
+  std::vector<std::string> failures;   ///< one sentence per reason, empty when passed
+  std::vector<std::string> diagnosis;  ///< likely causes, for a failure
+  Comparison comparison;
+  std::vector<Overload> overloads;
+  double beta = 1;
+  double jump_window = 0;  ///< s around each jump of a signal left out of its errors
+  double ngspice_seconds = 0;
+  Trajectory reference;
+  CircuitTrace circuit;
+};
+
+/// The main job: builds the deck (or takes the user's), runs it on the
+/// simulator, reads the result back in physical units and compares it with
+/// the exact reference model.
+VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator);
+
+}  // namespace gearpatch::verify
