@@ -1,0 +1,68 @@
+#pragma once
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "scene/machine.h"
+
+namespace gearpatch::circuit {
+
+/// How faithfully the blocks model the machine: `ideal` uses high-gain E
+/// elements and B-source function generators; `hardware` uses a behavioural
+/// TL071-class op-amp, 1N4148 diodes and DG419-class switches (templates/README.md).
+enum class Level { ideal, hardware };
+
+/// "ideal" or "hardware"; throws Error (kind input) on anything else.
+Level parse_level(std::string_view name);
+std::string_view level_name(Level level);
+
+/// One input of an integrator or summer: the subckt's formal pin name (a
+/// letter, then letters, digits or '_'; not "out", "sj" or "oa") and its
+/// weight n, one of MachineProfile::weights (input resistor R/n).
+struct Input {
+  std::string pin;
+  int weight = 1;
+};
+
+/// A fixed-pin block: its subckt name, pins in order and instance parameter.
+struct BlockInfo {
+  std::string name;               ///< "dead_zone"
+  std::string subckt;             ///< "gp_dead_zone", the same at both levels
+  std::vector<std::string> pins;  ///< {"in", "out"}
+  std::string param;              ///< "threshold", or empty if the block has none
+};
+
+/// The fixed-pin blocks render_block accepts: potentiometer, dead_zone,
+/// limiter, abs, halfwave, comparator, switch. (Integrators and summers have
+/// per-instance input lists: render_amplifier.)
+const std::vector<std::string>& block_names();
+/// Throws Error on an unknown name.
+const BlockInfo& block_info(std::string_view block);
+
+/// The resistance the block's `in` pin presents, to ground or a virtual
+/// ground: the load a hardware potentiometer driving it sees (the composer
+/// needs it for the loaded setting). +infinity where the input draws no
+/// current (every ideal-level block except potentiometer) or passes it on
+/// (switch: whatever its output drives). Hardware: potentiometer Rp, dead_zone
+/// R/40, limiter R/10, abs R/20, halfwave R/10, comparator R1 + R2 (to its
+/// own output). Integrator and summer inputs are R/n at both levels.
+double input_load(Level level, std::string_view block, const MachineProfile& machine);
+
+/// Shared lines every deck of that level needs once, before any block:
+/// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
+std::string render_models(Level level, const MachineProfile& machine);
+
+/// The `.subckt gp_<block> pins... params: <param>=<default>` definition of a
+/// fixed-pin block; the composer instantiates it as many times as needed,
+/// e.g. `Xdz a b gp_dead_zone params: threshold={a5}`.
+std::string render_block(Level level, std::string_view block, const MachineProfile& machine);
+
+/// One integrator or summer (`kind` "integrator" or "summer") as its own
+/// subckt `subckt_name` with pins inputs..., out (in the given order).
+/// Integrator: out = -k0*integral(sum n_i in_i); its initial value is set
+/// by the composer with a deck-level `.ic v(<out node>)=value` (0 without).
+/// Summer: out = -sum n_i in_i. Throws Error on a bad kind, name, pin or weight.
+std::string render_amplifier(Level level, std::string_view kind, const std::string& subckt_name,
+                             const std::vector<Input>& inputs, const MachineProfile& machine);
+
+}  // namespace gearpatch::circuit
