@@ -92,7 +92,7 @@ class Builder {
     if (has("alpha1")) in.push_back(through("sign_p", "alpha1"));
     in.push_back(through("m", "alpha3"));
     amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm", initial("alpha6"));
-    if (has("alpha6")) c_.initial_conditions.emplace_back("wp", "alpha6");
+    c_.initial_conditions.emplace_back("wp", has("alpha6") ? "alpha6" : "0");
   }
 
   void add_secondary() {  // (6.2): φ̇s' = (M0 − M_Rz − M_Rs − M_Re − M_L)/Θs
@@ -112,7 +112,7 @@ class Builder {
       c_.sources.emplace_back("ref_n", -1.0);
     }
     amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm", initial("alpha7"));
-    if (has("alpha7")) c_.initial_conditions.emplace_back("ws", "alpha7");
+    c_.initial_conditions.emplace_back("ws", has("alpha7") ? "alpha7" : "0");
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
   }
 
@@ -121,7 +121,7 @@ class Builder {
               "(6.3) relative speed: dw_n = -dphi'/dphi'_m");
     amplifier("int_x", true, "x", {through("dw_n", "alpha10")}, "(6.4) twist: x = +dphi/dphi_m",
               initial("alpha12"));
-    if (has("alpha12")) c_.initial_conditions.emplace_back("x", "alpha12");
+    c_.initial_conditions.emplace_back("x", has("alpha12") ? "alpha12" : "0");
     if (patch_.dead_zone) {
       block("dz", "dead_zone", {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
     } else {
@@ -136,12 +136,10 @@ class Builder {
     std::vector<AmplifierInput> in{through("xp", "alpha13")};
     if (has("alpha14")) {
       inverter("inv_dw", "dw_n", "dw", "dw = +dphi'/dphi'_m");
-      if (patch_.dead_zone) {
-        block("abs_xp", "abs", {"xp", "xp_abs_n"}, "", "block 8: xp_abs_n = -|xp|");
-        inverter("inv_abs_xp", "xp_abs_n", "xp_abs", "xp_abs = |xp|");
-        block("cmp_damp", "comparator", {"xp_abs", "damp_on"}, "{delta1}",
-              "blocks 7/9, (6.10): damping only in contact, |xp| > delta1");
-        in.push_back(through("dw", "alpha14", "damp_on"));
+      if (patch_.dead_zone) {  // (6.10) corrected: damping only while the flanks touch
+        contact_comparators("damp", "{delta1}", "blocks 7/9, (6.10)");
+        in.push_back(through("dw", "alpha14", "damp_p"));
+        in.push_back(through("dw", "alpha14", "damp_n"));
       } else {
         in.push_back(through("dw", "alpha14"));
         omit("blocks 7/9 damping switch: no backlash, the flanks never part");
@@ -151,6 +149,17 @@ class Builder {
     }
     amplifier("sum_m0", false, "m_n", in, "(6.8) transmitted torque: m_n = -M0/M0m");
     inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
+  }
+
+  /// Two comparators that tell which flanks touch: <name>_p while X' > δ,
+  /// <name>_n while X' < −δ.
+  void contact_comparators(const std::string& name, const std::string& offset, const std::string& what) {
+    if (!has_xp_inverted_) {
+      inverter("inv_xp", "xp", "xp_n", "xp_n = -xp");
+      has_xp_inverted_ = true;
+    }
+    block("cmp_" + name + "_p", "comparator", {"xp", name + "_p"}, offset, what + ": xp > " + offset);
+    block("cmp_" + name + "_n", "comparator", {"xp_n", name + "_n"}, offset, what + ": xp < -" + offset);
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
@@ -187,8 +196,7 @@ class Builder {
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
     block("lock_half", "halfwave", {"lock_steep_n", "lock_below", "lock_above"}, "",
           "lock_below = min(clip, 0), lock_above = max(clip, 0)");
-    block("cmp_lock_p", "comparator", {"xp", "engaged_p"}, "{delta2}", "block 17: engaged, xp > delta2");
-    block("cmp_lock_n", "comparator", {"dz_n", "engaged_n"}, "{delta2}", "block 17: engaged, xp < -delta2");
+    contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
   }
 
   void add_probes() {
@@ -204,6 +212,7 @@ class Builder {
   const Scene& scene_;
   const Patch& patch_;
   Level level_;
+  bool has_xp_inverted_ = false;
   Circuit c_;
 };
 
@@ -222,10 +231,10 @@ bool Circuit::uses(const std::string& kind) const {
   return std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) { return b.block == kind; });
 }
 
-double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
+double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e-3; }
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
-double lock_band(Level level) { return friction_band(level) / 100; }
+double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
 
 Circuit build_circuit(const Scene& scene, const Patch& patch, Level level) {
   return Builder(scene, patch, level).build();

@@ -63,7 +63,10 @@ struct Circuit {
   std::vector<std::pair<std::string, double>> parameters;  ///< .param name → value (ideal)
   std::map<std::string, double> dial_settings;  ///< potentiometer → dial position (hardware)
   std::map<std::string, int> weights;           ///< potentiometer → input weight
-  std::vector<std::pair<std::string, std::string>> initial_conditions;  ///< node → .param name
+  /// node → .param name of its initial value, or "0": a machine sets every
+  /// integrator in IC mode, and an unset one would start wherever the
+  /// operating point leaves it (op-amp offsets charge the capacitor).
+  std::vector<std::pair<std::string, std::string>> initial_conditions;
   std::vector<std::string> omitted;             ///< blocks left out, with the reason
   std::map<std::string, Probe> probes;          ///< omega_p, omega_s, dphi, m0
   double beta = 1;                              ///< machine time = β · real time
@@ -76,7 +79,9 @@ struct Circuit {
 /// The comparator offsets δ1, δ2 for a level, in machine units. The paper sets
 /// them "by experiment" just above the zero errors and noise of the machine:
 /// the ideal circuit has none, so only the comparator's own smoothing counts
-/// (1e-5 MU); hardware op-amps have millivolt offsets, so 1e-3 MU (10 mV).
+/// (1e-5 MU). On hardware δ must clear the Schmitt trigger's hysteresis of
+/// ±1e-3 MU plus the op-amps' 1 mV offsets, or a comparator watching |Δφ'|
+/// never switches back: 5e-3 MU (50 mV).
 double comparator_offset(Level level);
 
 /// Width of the linear band of the friction characteristic sign(φ̇) (blocks
@@ -84,7 +89,9 @@ double comparator_offset(Level level);
 /// which is how the circuit holds a shaft at rest. The ideal level makes it
 /// as narrow as ngspice integrates robustly (1e-5 MU); a diode limiter on a
 /// real op-amp reaches a gain of about 1000 (1e-3 MU). The self-locking
-/// characteristic (block 16) is two orders of magnitude steeper, as section 6 asks.
+/// characteristic (block 16) is two orders of magnitude steeper at the ideal
+/// level, as section 6 asks; on hardware only one (1e-4 MU = 1 mV), since the
+/// op-amps' 1 mV offset would saturate anything steeper at zero input.
 double friction_band(Level level);
 double lock_band(Level level);
 
