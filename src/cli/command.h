@@ -17,5 +17,6 @@ struct Command {
 const std::vector<Command>& commands();
 
 int run_simulate(const std::vector<std::string>& args);
+int run_settings(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

@@ -5,6 +5,7 @@ namespace gearpatch::cli {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"simulate", "run the reference model; CSV in physical units", run_simulate},
+      {"settings", "scaling and the potentiometer settings of Table 1; --json", run_settings},
   };
   return table;
 }

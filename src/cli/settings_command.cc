@@ -1,0 +1,53 @@
+#include <cstdio>
+
+#include "cli/command.h"
+#include "cli/options.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+#include "scaling/patch.h"
+#include "scene/scene.h"
+
+namespace gearpatch::cli {
+
+int run_settings(const std::vector<std::string>& args) {
+  po::options_description options("settings options");
+  options.add_options()
+      ("json", "write JSON instead of the table")
+      ("out,o", po::value<std::string>(), "write to FILE instead of stdout")
+      ("beta", po::value<double>(), "time scale β (machine time = β·real time); default: the "
+       "scene's machine.time_scale, else chosen automatically")
+      ("autoscale", "rescale every maximum from the simulated peak plus --headroom")
+      ("headroom", po::value<double>()->default_value(0.1, "0.1"), "autoscale headroom (0.1 = 10 %)")
+      ("no-check", "skip the simulation that checks every peak against its scale")
+      ("exact-maxima", "keep the estimated speed maxima as computed instead of rounding them "
+       "up to 1, 2, 5 × 10^n")
+      ("comparator-offset", po::value<double>()->default_value(1e-3, "0.001"),
+       "comparator offsets δ1, δ2 in machine units");
+  po::variables_map vm;
+  if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
+                       "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"
+                       "settings of Table 1: every coefficient as α·n, the dial position with the\n"
+                       "load connected, what was left out, and the simulated peak of every signal.\n"
+                       "Overloads are warnings (exit 0); an unreachable coefficient is an error (2).",
+                       options, vm))
+    return 0;
+  const auto scenes = vm["scene"].as<std::vector<std::string>>();
+  if (scenes.size() != 1) throw Error("settings takes one SCENE");
+  PatchOptions o;
+  o.autoscale = vm.count("autoscale") > 0;
+  o.check_peaks = vm.count("no-check") == 0;
+  if (o.autoscale && !o.check_peaks) throw Error("--autoscale needs the simulation; drop --no-check");
+  o.headroom = vm["headroom"].as<double>();
+  o.round_speeds = vm.count("exact-maxima") == 0;
+  o.comparator_offset = vm["comparator-offset"].as<double>();
+  if (vm.count("beta")) o.beta = vm["beta"].as<double>();
+  const Patch patch = make_patch(load_scene(scenes.front()), o);
+  const std::string text = vm.count("json") ? to_json(patch) : to_table(patch);
+  if (vm.count("out")) write_file_atomically(vm["out"].as<std::string>(), text);
+  else std::fputs(text.c_str(), stdout);
+  if (vm.count("json") || vm.count("out"))  // the table already lists them
+    for (const auto& w : patch.warnings) std::fprintf(stderr, "gearpatch settings: warning: %s\n", w.c_str());
+  return 0;
+}
+
+}  // namespace gearpatch::cli

@@ -1,0 +1,232 @@
+#include "scaling/patch.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "model/gear_model.h"
+#include "scaling/peaks.h"
+#include "scaling/table1.h"
+#include "scaling/time_scale.h"
+#include "scene/scene.h"
+
+namespace gearpatch {
+
+double delivered_fraction(double dial, double load_ratio) {
+  return dial / (1 + dial * (1 - dial) / load_ratio);
+}
+
+double loaded_setting(double alpha, double load_ratio) {
+  const double a = alpha, l = load_ratio, b = l - a;
+  return 2 * a * l / (b + std::sqrt(b * b + 4 * a * a * l));
+}
+
+const Potentiometer* Patch::find(std::string_view name) const {
+  for (const auto& p : potentiometers)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+namespace {
+
+constexpr double overload_tolerance = 1e-9;  // rounding of the reference solver
+
+/// What to change when a coefficient is beyond every weight.
+std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, double half_backlash,
+                   int largest_weight) {
+  if (c.kind == CoefficientKind::integrator)
+    return fmt::format("raise β to at least {:.3g} (or set machine.time_scale = auto), raise the "
+                       "maximum it divides by, or use a machine with larger input weights",
+                       needed_beta);
+  if (c.kind == CoefficientKind::initial)
+    return fmt::format("the initial value exceeds its maximum: raise maxima.{}",
+                       c.name == "alpha6" ? "speed_primary" : c.name == "alpha7" ? "speed_secondary"
+                                                                                 : "twist");
+  if (c.name == "alpha11")
+    return fmt::format("the contact twist Δφ'm = {:.4g} rad is tiny against the play (Δφm = {:.4g} "
+                       "rad): {}, or use a machine with larger input weights", m.contact_twist, m.twist,
+                       largest_weight > 1
+                           ? fmt::format("give maxima.contact_twist >= ε/(n − 1) = {:.4g} rad (n = {})",
+                                         half_backlash / (largest_weight - 1), largest_weight)
+                           : std::string("give a larger maxima.contact_twist"));
+  if (c.name == "alpha8" || c.name == "alpha9")
+    return "the speed maximum is large against Δφ̇m: raise maxima.relative_speed or lower "
+           "maxima.speed_primary/speed_secondary";
+  return "raise maxima.torque, or use a machine with larger input weights";
+}
+
+Potentiometer split(const Coefficient& c, double beta, const MachineProfile& machine,
+                    const Maxima& m, double half_backlash) {
+  const double table = c.at(beta);
+  const bool integrator = c.kind == CoefficientKind::integrator;
+  const double coefficient = integrator ? table / machine.integrator_constant : table;
+  std::vector<int> weights = machine.weights;
+  std::sort(weights.begin(), weights.end());
+  if (c.kind == CoefficientKind::initial) weights = {1};
+  const double size = std::abs(coefficient);
+  auto fits = std::find_if(weights.begin(), weights.end(),
+                           [&](int n) { return size <= n * (1 + 1e-12); });
+  if (fits == weights.end()) {
+    const double needed = beta * size / weights.back();
+    throw Error(fmt::format(
+        "{} = {} = {:.6g}{} is beyond the largest input weight {}{}: {}", c.name, c.formula, table,
+        integrator && machine.integrator_constant != 1
+            ? fmt::format(" (÷ k0 → {:.6g})", coefficient) : "",
+        weights.back(), integrator ? fmt::format(" at β = {:g}", beta) : "",
+        advice(c, m, needed, half_backlash, weights.back())));
+  }
+  Potentiometer pot;
+  pot.name = c.name;
+  pot.formula = c.formula;
+  pot.feeds = c.feeds;
+  pot.coefficient = coefficient;
+  pot.weight = *fits;
+  pot.setting = std::min(1.0, size / pot.weight);
+  const double load = machine.input_resistance / pot.weight / machine.potentiometer_resistance;
+  pot.loaded_setting = std::clamp(loaded_setting(pot.setting, load), pot.setting, 1.0);
+  return pot;
+}
+
+/// The maxima from the simulated peaks: each becomes its peak·(1 + headroom);
+/// a signal that stayed at zero keeps its a-priori maximum.
+Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std::vector<std::string>& notes) {
+  Maxima m = a;
+  const double f = 1 + headroom;
+  const std::string how = fmt::format("autoscaled: simulated peak × {:g}", f);
+  auto set = [&](const std::string& key, double peak) {
+    if (peak > 0) {
+      m.at(key) = peak * f;
+      m.basis[key] = how;
+    } else {
+      notes.push_back(fmt::format("autoscale: {} stays 0 in the run; kept the a-priori maximum", key));
+    }
+  };
+  if (a.drive_torque > 0) set("drive_torque", x.drive);
+  set("speed_primary", x.omega_p);
+  set("speed_secondary", x.omega_s);
+  set("relative_speed", x.rate);
+  if (x.contact_twist > 0) {
+    set("contact_twist", x.contact_twist);
+    set("twist", x.dphi);
+  } else {
+    notes.push_back("autoscale: the flanks never touch in the run; kept the a-priori twist maxima");
+  }
+  set("torque", std::max({x.torque, x.spring, x.damping}));
+  return m;
+}
+
+const std::map<std::string, std::string>& scale_keys() {
+  static const std::map<std::string, std::string> keys = {
+      {"Wp", "speed_primary"}, {"Ws", "speed_secondary"}, {"DW", "relative_speed"},
+      {"X", "twist"}, {"X'", "contact_twist"}, {"m", "torque"}, {"drive", "drive_torque"},
+      {"dead_zone", "twist"}, {"spring", "torque"}, {"damping", "torque"},
+      {"tooth_friction", "torque"}, {"lock_reaction", "torque"}};
+  return keys;
+}
+
+void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Patch& patch) {
+  for (const auto& [signal, fraction] : peaks) {
+    if (fraction <= 1 + overload_tolerance) continue;
+    auto key = scale_keys().find(signal);
+    std::string fix = key == scale_keys().end() ? std::string("use --autoscale")
+        : fmt::format("raise maxima.{} to at least {:.4g} or use --autoscale", key->second,
+                      m.at(key->second) * fraction);
+    patch.warnings.push_back(fmt::format("{} would overload: simulated peak {:.4g} MU, {:.1f} % over "
+                                         "its scale; {}", signal, fraction, 100 * (fraction - 1), fix));
+  }
+}
+
+void check_and_autoscale(const Scene& s, const GearParameters& p, const PatchOptions& o, Patch& patch) {
+  PhysicalPeaks x;
+  try {
+    x = simulate_peaks(s, p);
+  } catch (const Error& e) {
+    if (o.autoscale) throw Error(std::string("autoscale needs the reference model, which failed: ") + e.what());
+    patch.warnings.push_back(std::string("peaks not checked: the reference model failed: ") + e.what());
+    return;
+  }
+  patch.a_priori_peaks = peak_fractions(x, patch.a_priori, p).scaled;
+  if (o.autoscale) {
+    if (!(o.headroom >= 0 && o.headroom < 1)) throw Error("the headroom must be in [0, 1)");
+    patch.maxima = autoscaled(patch.a_priori, x, o.headroom, patch.notes);
+    patch.notes.push_back(fmt::format(
+        "autoscale: every maximum is its simulated peak plus {:g} % headroom, so every scaled "
+        "signal peaks at {:.1f} % of its scale (the a-priori estimate is kept in a_priori)",
+        100 * o.headroom, 100 / (1 + o.headroom)));
+  }
+  const PeakFractions f = peak_fractions(x, patch.maxima, p);
+  patch.peaks = f.scaled;
+  patch.bounded_peaks = f.bounded;
+  overload_warnings(patch.peaks, patch.maxima, patch);
+  overload_warnings(patch.bounded_peaks, patch.maxima, patch);
+}
+
+/// Table 1's order: alpha1 … alpha14, the extensions, then a, delta1, delta2.
+int rank(const std::string& name) {
+  static const std::vector<std::string> tail = {"alpha_tooth", "alpha_load", "alpha_lock",
+                                                "a", "delta1", "delta2"};
+  auto it = std::find(tail.begin(), tail.end(), name);
+  if (it != tail.end()) return 100 + static_cast<int>(it - tail.begin());
+  return std::stoi(name.substr(5));
+}
+
+void add_notes(const Scene& s, const GearParameters& p, const PatchOptions& o, const Table1& t,
+               Patch& patch) {
+  for (const auto& c : t.entries)
+    if (!c.remark.empty()) patch.notes.push_back(c.name + ": " + c.remark);
+  if (patch.k0 != 1)
+    patch.notes.push_back(fmt::format("integrator coefficients are Table 1's values (k0 = 1) divided "
+                                      "by this machine's k0 = {:g}", patch.k0));
+  if (o.round_speeds && !s.rated_speed)
+    patch.notes.push_back("the a-priori speed maxima are estimated, then rounded up to 1, 2 or "
+                          "5 × 10^n as a person patching by hand would (--exact-maxima keeps the "
+                          "bound itself)");
+  else if (!s.rated_speed)
+    patch.notes.push_back("the a-priori speed maxima are the estimated bounds, not rounded");
+  if (p.half_backlash > 0 || p.self_locking)
+    patch.notes.push_back(fmt::format(
+        "comparator offsets δ1, δ2 = {:g} MU ({:g} mV): the paper sets them by experiment, just above "
+        "zero errors and noise; set --comparator-offset to change", o.comparator_offset,
+        o.comparator_offset * patch.unit_volts * 1e3));
+  patch.notes.push_back("loaded setting: the dial position that delivers α into the input it feeds "
+                        "(R_in = input_resistance/n; initial values: input_resistance)");
+}
+
+}  // namespace
+
+Patch make_patch(const Scene& s, const PatchOptions& o) {
+  const GearParameters p = GearParameters::from_scene(s);
+  Patch patch;
+  patch.scene = s.name;
+  patch.k0 = s.machine.integrator_constant;
+  patch.unit_volts = s.machine.unit_volts;
+  if (!(o.comparator_offset > 0 && o.comparator_offset < 1))
+    throw Error("the comparator offset must be in (0, 1) MU");
+  if (o.beta && !(*o.beta > 0 && std::isfinite(*o.beta))) throw Error("β must be a number > 0");
+  patch.a_priori = patch.maxima = estimate_maxima(s, p, {o.round_speeds});
+  if (o.check_peaks || o.autoscale) check_and_autoscale(s, p, o, patch);
+
+  Table1 t = table1(s, p, patch.maxima);
+  std::stable_sort(t.entries.begin(), t.entries.end(),
+                   [](const auto& a, const auto& b) { return rank(a.name) < rank(b.name); });
+  std::vector<IntegratorRate> rates;
+  for (const auto& c : t.entries)
+    if (c.kind == CoefficientKind::integrator) rates.push_back({c.name, c.rate});
+  const TimeScale ts = choose_time_scale(rates, contact_frequency(p), s.machine,
+                                         o.beta ? o.beta : s.machine.time_scale);
+  patch.beta = ts.beta;
+  patch.beta_reason = ts.reason;
+  patch.warnings.insert(patch.warnings.end(), ts.warnings.begin(), ts.warnings.end());
+  for (const auto& c : t.entries) patch.potentiometers.push_back(split(c, ts.beta, s.machine, patch.maxima, p.half_backlash));
+  if (p.half_backlash > 0) patch.dead_zone = p.half_backlash / patch.maxima.twist;
+  if (p.half_backlash > 0 && p.damping > 0) patch.delta1 = o.comparator_offset;
+  if (p.self_locking) patch.delta2 = o.comparator_offset;
+  patch.unused = t.unused;
+  std::stable_sort(patch.unused.begin(), patch.unused.end(),
+                   [](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+  add_notes(s, p, o, t, patch);
+  return patch;
+}
+
+}  // namespace gearpatch

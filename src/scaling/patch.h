@@ -1,0 +1,84 @@
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "scaling/maxima.h"
+
+namespace gearpatch {
+
+struct Scene;
+
+/// One coefficient potentiometer of the patch: Table 1's coefficient split
+/// into a dial setting α in [0, 1] and an input weight n, and the dial
+/// position that delivers α with the input resistor connected.
+/// `coefficient` = α·n as set on the machine: Table 1's value, divided by k0
+/// for integrator inputs. Initial-value potentiometers (alpha6, alpha7,
+/// alpha12) have weight 1 and a signed coefficient: a negative one is taken
+/// from the −1 MU reference (`feeds` says which).
+struct Potentiometer {
+  std::string name, formula, feeds;
+  double coefficient = 0, setting = 0, weight = 1, loaded_setting = 0;
+};
+
+/// What make_patch is asked to do besides the a-priori scaling.
+struct PatchOptions {
+  bool check_peaks = true;   ///< run the reference model and report every peak
+  bool autoscale = false;    ///< rescale the maxima from the simulated peaks
+  double headroom = 0.1;     ///< autoscale: maximum = peak·(1 + headroom)
+  bool round_speeds = true;  ///< round estimated speed maxima up to 1-2-5 × 10^n
+  std::optional<double> beta;       ///< overrides the scene's machine.time_scale
+  double comparator_offset = 1e-3;  ///< δ1, δ2 in MU (the paper: "by experiment")
+};
+
+/// The program for one scene: time scale, maxima, every potentiometer the
+/// scene needs, the dead-zone threshold and comparator offsets, what was left
+/// out and why, and the simulated peak of every signal as a fraction of its
+/// scale (machine units; > 1 is an overload).
+struct Patch {
+  std::string scene;   ///< the scene's name
+  double beta = 1, k0 = 1, unit_volts = 10;
+  Maxima maxima;       ///< the maxima the settings use
+  Maxima a_priori;     ///< section 6's estimate (equal to maxima without autoscale)
+  std::vector<Potentiometer> potentiometers;
+  std::optional<double> dead_zone;  ///< a = ε/Δφm, MU; empty without backlash
+  double delta1 = 0, delta2 = 0;    ///< comparator offsets, MU (0 when unused)
+  std::vector<std::pair<std::string, std::string>> unused;  ///< name → reason
+  std::map<std::string, double> peaks;          ///< signals that own a scale (Wp, Ws, DW, X, X', m, drive)
+  std::map<std::string, double> bounded_peaks;  ///< dead zone, spring, damping, friction, lock
+  std::map<std::string, double> a_priori_peaks; ///< `peaks` against the a-priori maxima
+  std::string beta_reason;
+  std::vector<std::string> warnings;  ///< overloads, hard-to-set coefficients, fast dynamics
+  std::vector<std::string> notes;     ///< how the numbers were found
+
+  const Potentiometer* find(std::string_view name) const;
+};
+
+/// Settings for the scene: a-priori maxima (section 6), β, Table 1 split into
+/// α·n, loaded settings; with check_peaks a run of the reference model
+/// reports every signal's peak, with autoscale the maxima become the peaks
+/// plus headroom. Throws Error (input) for a coefficient no weight reaches,
+/// naming it and what to change.
+Patch make_patch(const Scene& scene, const PatchOptions& options = {});
+
+/// What a potentiometer at dial position `dial` delivers into a load of
+/// `load_ratio` (λ = R_load/R_pot) times its own resistance:
+/// dial/(1 + dial·(1 − dial)/λ).
+double delivered_fraction(double dial, double load_ratio);
+
+/// The dial position that delivers `alpha` into that load: the root in [0, 1]
+/// of α·x² + (λ − α)·x − α·λ = 0, x = 2αλ/((λ − α) + sqrt((λ − α)² + 4α²λ)).
+double loaded_setting(double alpha, double load_ratio);
+
+/// The patch as JSON: beta, k0, unit_volts, maxima, potentiometers (name,
+/// formula, coefficient, setting, weight, loaded_setting, feeds), dead_zone,
+/// delta1, delta2, unused, peaks, and the rest of the report.
+std::string to_json(const Patch& patch);
+
+/// The patch as a table a person can patch from.
+std::string to_table(const Patch& patch);
+
+}  // namespace gearpatch

@@ -1,0 +1,151 @@
+// Text forms of a Patch: JSON for scripts, a table for the person patching.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "scaling/patch.h"
+
+namespace gearpatch {
+namespace {
+
+using nlohmann::json;
+
+json maxima_json(const Maxima& m) {
+  json j = json::object();
+  for (const auto& [key, value] : m.entries()) j[key] = value;
+  return j;
+}
+
+json optional_number(bool used, double value) { return used ? json(value) : json(nullptr); }
+
+}  // namespace
+
+std::string to_json(const Patch& patch) {
+  json j;
+  j["scene"] = patch.scene;
+  j["beta"] = patch.beta;
+  j["beta_reason"] = patch.beta_reason;
+  j["k0"] = patch.k0;
+  j["unit_volts"] = patch.unit_volts;
+  j["maxima"] = maxima_json(patch.maxima);
+  j["maxima_basis"] = patch.maxima.basis;
+  j["a_priori_maxima"] = maxima_json(patch.a_priori);
+  j["potentiometers"] = json::array();
+  for (const auto& p : patch.potentiometers)
+    j["potentiometers"].push_back({{"name", p.name}, {"formula", p.formula},
+                                   {"coefficient", p.coefficient}, {"setting", p.setting},
+                                   {"weight", static_cast<int>(p.weight)},
+                                   {"loaded_setting", p.loaded_setting}, {"feeds", p.feeds}});
+  j["dead_zone"] = patch.dead_zone ? json(*patch.dead_zone) : json(nullptr);
+  j["delta1"] = optional_number(patch.delta1 > 0, patch.delta1);
+  j["delta2"] = optional_number(patch.delta2 > 0, patch.delta2);
+  j["unused"] = json::array();
+  for (const auto& [name, reason] : patch.unused) j["unused"].push_back({{"name", name}, {"reason", reason}});
+  j["peaks"] = patch.peaks;
+  j["bounded_peaks"] = patch.bounded_peaks;
+  j["a_priori_peaks"] = patch.a_priori_peaks;
+  j["warnings"] = patch.warnings;
+  j["notes"] = patch.notes;
+  return j.dump(2) + "\n";
+}
+
+namespace {
+
+/// Columns on a terminal: UTF-8 code points, not counting combining marks
+/// (U+0300–U+036F, the dot of φ̇).
+std::size_t display_width(const std::string& s) {
+  std::size_t width = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto byte = static_cast<unsigned char>(s[i]);
+    if ((byte & 0xC0) == 0x80) continue;
+    const bool combining = (byte == 0xCC || (byte == 0xCD && i + 1 < s.size() &&
+                                             static_cast<unsigned char>(s[i + 1]) < 0xB0));
+    if (!combining) ++width;
+  }
+  return width;
+}
+
+std::string pad(const std::string& s, std::size_t width) {
+  const std::size_t w = display_width(s);
+  return w >= width ? s : s + std::string(width - w, ' ');
+}
+
+const char* symbol(const std::string& key) {
+  if (key == "drive_torque") return "M_am  N·m";
+  if (key == "speed_primary") return "φ̇pm   rad/s";
+  if (key == "speed_secondary") return "φ̇sm   rad/s";
+  if (key == "relative_speed") return "Δφ̇m   rad/s";
+  if (key == "contact_twist") return "Δφ'm  rad";
+  if (key == "twist") return "Δφm   rad";
+  return "M0m   N·m";
+}
+
+void maxima_section(const Patch& patch, std::string& out) {
+  out += "maxima (the value 1 MU stands for):\n";
+  Maxima a_priori = patch.a_priori;
+  for (const auto& [key, value] : patch.maxima.entries()) {
+    auto basis = patch.maxima.basis.find(key);
+    std::string how = basis == patch.maxima.basis.end() ? "" : basis->second;
+    if (a_priori.at(key) != value) how += fmt::format(" (a priori {:.6g})", a_priori.at(key));
+    out += fmt::format("  {:<16} {} {:<11.6g} {}\n", key, pad(symbol(key), 12), value, how);
+  }
+}
+
+void settings_section(const Patch& patch, std::string& out) {
+  out += fmt::format("\npotentiometers (set α at weight n; with the load connected dial 'loaded'):\n"
+                     "  {:<12} {:>11} {:>8} {:>3} {:>8}   {} feeds\n", "name", "value α·n", "α", "n",
+                     "loaded", pad("formula (Table 1)", 42));
+  for (const auto& p : patch.potentiometers)
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}\n", p.name, p.coefficient,
+                       p.setting, static_cast<int>(p.weight), p.loaded_setting, pad(p.formula, 42),
+                       p.feeds);
+  if (patch.dead_zone)
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} threshold of the dead zone on X "
+                       "(block 5)\n", "a", *patch.dead_zone, *patch.dead_zone, "", "", pad("ε/Δφm", 42));
+  if (patch.delta1 > 0)
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} offset of the damping-switch "
+                       "comparator on |X'| (blocks 7/9)\n", "delta1", patch.delta1, patch.delta1, "", "",
+                       pad("by experiment (default)", 42));
+  if (patch.delta2 > 0)
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} offset of the self-locking "
+                       "comparators (blocks 16/17)\n", "delta2", patch.delta2, patch.delta2, "", "",
+                       pad("by experiment (default)", 42));
+  if (!patch.unused.empty()) out += "\nleft out:\n";
+  for (const auto& [name, reason] : patch.unused) out += fmt::format("  {:<12} {}\n", name, reason);
+}
+
+void peaks_section(const Patch& patch, std::string& out) {
+  if (patch.peaks.empty()) return;
+  const bool autoscaled = patch.a_priori_peaks != patch.peaks;
+  out += autoscaled ? "\nsimulated peaks, % of scale (a-priori maxima → autoscaled):\n"
+                    : "\nsimulated peaks, % of scale (reference model, a-priori maxima):\n";
+  static const std::vector<std::string> order = {"Wp", "Ws", "DW", "X", "X'", "m", "drive"};
+  for (const auto& signal : order) {
+    auto found = patch.peaks.find(signal);
+    if (found == patch.peaks.end()) continue;
+    const double fraction = found->second;
+    auto before = patch.a_priori_peaks.find(signal);
+    out += autoscaled && before != patch.a_priori_peaks.end()
+               ? fmt::format("  {:<20} {:6.1f} % → {:6.1f} %\n", signal, 100 * before->second, 100 * fraction)
+               : fmt::format("  {:<20} {:6.1f} %\n", signal, 100 * fraction);
+  }
+  for (const auto& [signal, fraction] : patch.bounded_peaks)
+    out += fmt::format("  {:<20} {:6.1f} %  (bounded by construction)\n", signal, 100 * fraction);
+}
+
+}  // namespace
+
+std::string to_table(const Patch& patch) {
+  std::string out = fmt::format("{}: β = {:g} (machine time = β · real time), k0 = {:g}/s, 1 MU = {:g} V\n"
+                                "  {}\n\n", patch.scene, patch.beta, patch.k0, patch.unit_volts,
+                                patch.beta_reason);
+  maxima_section(patch, out);
+  settings_section(patch, out);
+  peaks_section(patch, out);
+  if (!patch.warnings.empty()) out += "\nwarnings:\n";
+  for (const auto& w : patch.warnings) out += "  ! " + w + "\n";
+  if (!patch.notes.empty()) out += "\nnotes:\n";
+  for (const auto& n : patch.notes) out += "  - " + n + "\n";
+  return out;
+}
+
+}  // namespace gearpatch
