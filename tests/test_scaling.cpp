@@ -333,7 +333,14 @@ TEST_CASE("Tooth friction moves η from alpha4 into alpha_tooth; self-locking ad
   CHECK(patch.find("alpha4")->coefficient == Approx(m.torque / scale).epsilon(1e-14));
   CHECK(patch.find("alpha4")->formula == "η·M0m/(Θs·β·φ̇sm)");
   CHECK(patch.find("alpha_tooth")->coefficient == Approx(0.6 * m.torque / scale).epsilon(1e-14));
-  CHECK(patch.find("alpha_lock")->coefficient == Approx(m.torque / scale).epsilon(1e-14));  // M_Rem = M0m
+  // k_Re → ∞: the reaction is dialled at the strongest the machine allows (α = 1 at
+  // weight 10), and β is raised until it stops a full-scale speed within 0.1 % of
+  // the 3 s run: 1/(10·k0·β) <= 3e-3 s → β >= 33.3 → 50.
+  CHECK(patch.find("alpha_lock")->coefficient == 10);
+  CHECK(patch.find("alpha_lock")->setting == 1);
+  CHECK(patch.beta == 50);
+  CHECK(patch.beta_reason.find("self-locking reaction") != std::string::npos);
+  CHECK(patch.find("alpha_lock")->coefficient * scale >= 10 * m.torque);  // M_Rem far above M0m
   CHECK(patch.delta2 == 1e-3);
   bool explained = false;
   for (const auto& n : patch.notes) explained = explained || n.rfind("alpha4: set without η", 0) == 0;

@@ -18,5 +18,7 @@ const std::vector<Command>& commands();
 
 int run_simulate(const std::vector<std::string>& args);
 int run_settings(const std::vector<std::string>& args);
+int run_netlist(const std::vector<std::string>& args);
+int run_verify(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

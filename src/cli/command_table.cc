@@ -6,6 +6,8 @@ const std::vector<Command>& commands() {
   static const std::vector<Command> table = {
       {"simulate", "run the reference model; CSV in physical units", run_simulate},
       {"settings", "scaling and the potentiometer settings of Table 1; --json", run_settings},
+      {"netlist", "the circuit as an ngspice deck (--level ideal|hardware)", run_netlist},
+      {"verify", "netlist -> ngspice -> compare with the reference; pass or fail", run_verify},
   };
   return table;
 }

@@ -193,6 +193,46 @@ void add_notes(const Scene& s, const GearParameters& p, const PatchOptions& o, c
                         "(R_in = input_resistance/n; initial values: input_resistance)");
 }
 
+/// The share of the run within which the self-locking reaction must catch a
+/// secondary turning at full scale against the engagement.
+constexpr double lock_catch_fraction = 1e-3;
+
+/// The paper's k_Re → ∞ stops the secondary at once; a machine can only
+/// drive an integrator at α·n ≤ the largest weight, so the reaction (blocks
+/// 16/17) is dialled at its strongest, α_lock = 1 at that weight, and stops a
+/// full-scale speed in 1/(n·k0·β) s of real time. Automatic β is raised until
+/// that is at most lock_catch_fraction of the run; an explicit β is warned about.
+void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1& t, TimeScale& ts) {
+  const int strongest = *std::max_element(s.machine.weights.begin(), s.machine.weights.end());
+  const double k0 = s.machine.integrator_constant;
+  const double needed = 1 / (strongest * k0 * lock_catch_fraction * s.duration);
+  if (!explicit_beta && ts.beta < needed) {
+    ts.beta = round_up_125(needed);
+    ts.reason += fmt::format("; raised to {:g} so that the self-locking reaction, at most {:g} MU per "
+                             "machine second, catches the load within {:g} % of the run "
+                             "(1/(n·k0·β) = {:.3g} s)",
+                             ts.beta, strongest * k0, 100 * lock_catch_fraction, 1 / (strongest * k0 * ts.beta));
+    for (const auto& c : t.entries)
+      if (c.kind == CoefficientKind::integrator && c.name != "alpha_lock" && c.rate / ts.beta / k0 < 0.1)
+        ts.warnings.push_back(fmt::format("{} = {:.3g} at β = {:g} is below 0.1: hard to set precisely",
+                                          c.name, c.rate / ts.beta / k0, ts.beta));
+  } else if (explicit_beta && ts.beta < needed) {
+    ts.warnings.push_back(fmt::format(
+        "at β = {:g} the self-locking reaction needs {:.3g} s to catch the load ({:.2g} % of the run): "
+        "β >= {:.3g} keeps it within {:g} %", ts.beta, 1 / (strongest * k0 * ts.beta),
+        100 / (strongest * k0 * ts.beta * s.duration), needed, 100 * lock_catch_fraction));
+  }
+  for (auto& c : t.entries)
+    if (c.name == "alpha_lock") {
+      c.rate = strongest * k0 * ts.beta;
+      c.formula = "M_Rem/(Θs·β·φ̇sm), M_Rem the strongest the machine dials";
+      c.remark = "the paper's k_Re → ∞: the reaction (6.7) is dialled as strong as the machine "
+                 "allows (α = 1 at the largest weight), far above the M0m + |M_L| + k_Rs it must "
+                 "hold, so that it catches the load at once; block 16 is a characteristic of Ws "
+                 "steeper than block 14's";
+    }
+}
+
 }  // namespace
 
 Patch make_patch(const Scene& s, const PatchOptions& o) {
@@ -213,8 +253,9 @@ Patch make_patch(const Scene& s, const PatchOptions& o) {
   std::vector<IntegratorRate> rates;
   for (const auto& c : t.entries)
     if (c.kind == CoefficientKind::integrator) rates.push_back({c.name, c.rate});
-  const TimeScale ts = choose_time_scale(rates, contact_frequency(p), s.machine,
-                                         o.beta ? o.beta : s.machine.time_scale);
+  TimeScale ts = choose_time_scale(rates, contact_frequency(p), s.machine,
+                                   o.beta ? o.beta : s.machine.time_scale);
+  if (p.self_locking) strongest_lock(s, o.beta ? o.beta : s.machine.time_scale, t, ts);
   patch.beta = ts.beta;
   patch.beta_reason = ts.reason;
   patch.warnings.insert(patch.warnings.end(), ts.warnings.begin(), ts.warnings.end());

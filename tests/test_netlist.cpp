@@ -1,0 +1,154 @@
+// The generated decks: golden files, ngspice runs each of them, and each
+// holds only the blocks its scene needs.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <clocale>
+#include <regex>
+
+#include "circuit/circuit.h"
+#include "circuit/netlist.h"
+#include "common/atomic_file.h"
+#include "scaling/patch.h"
+#include "spice/simulator.h"
+#include "support.h"
+
+using namespace gearpatch;
+using namespace gearpatch::circuit;
+
+namespace {
+
+struct Generated {
+  Circuit circuit;
+  std::string deck;
+};
+
+Generated generate(const Scene& scene, Level level) {
+  PatchOptions options;
+  options.check_peaks = false;
+  options.comparator_offset = comparator_offset(level);
+  Circuit c = build_circuit(scene, make_patch(scene, options), level);
+  std::string deck = render_netlist(c, level, scene.machine);
+  return {std::move(c), std::move(deck)};
+}
+
+Generated generate(const std::string& name, Level level) {
+  return generate(testing::example_scene(name), level);
+}
+
+int count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (auto at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("the committed decks in netlists/ are what the generator writes", "[netlist]") {
+  for (const auto& name : testing::example_scenes())
+    for (Level level : {Level::ideal, Level::hardware}) {
+      const std::string file = "netlists/" + name + "." + std::string(level_name(level)) + ".cir";
+      INFO(file << " differs; if the change is intended, regenerate with: build/gearpatch netlist scenes/"
+                << name << ".ini --level " << level_name(level) << " -o " << file);
+      REQUIRE(std::filesystem::exists(testing::source_path(file)));
+      CHECK(generate(name, level).deck == read_file(testing::source_path(file)));
+    }
+}
+
+TEST_CASE("ngspice parses and runs every generated deck", "[netlist][ngspice]") {
+  auto ngspice = spice::make_batch_ngspice();
+  for (const auto& name : testing::example_scenes())
+    for (Level level : {Level::ideal, Level::hardware}) {
+      INFO(name << " at level " << level_name(level));
+      const Scene scene = testing::example_scene(name);
+      const Generated g = generate(scene, level);
+      const spice::Vectors v = ngspice->run(g.deck, {});
+      const auto& time = v.at("time");
+      REQUIRE(time.size() > 1000);
+      CHECK(time.back() == Approx(g.circuit.beta * scene.duration).epsilon(1e-9));
+      // the t = 0 row exists and holds the initial primary speed (.ic, not uic)
+      CHECK(time.front() == 0.0);
+      CHECK(v.at("v(wp)").front() / scene.machine.unit_volts ==
+            Approx(scene.speed_primary / make_patch(scene).maxima.speed_primary).margin(2e-3));
+    }
+}
+
+TEST_CASE("a frictionless deck has no friction, absolute-value or self-locking blocks", "[netlist]") {
+  for (const std::string name : {"bild5a", "bild5b", "bild5c"})
+    for (Level level : {Level::ideal, Level::hardware}) {
+      INFO(name << " " << level_name(level));
+      const Generated g = generate(name, level);
+      for (const char* block : {"limiter", "abs", "halfwave"}) {
+        CHECK(!g.circuit.uses(block));
+        CHECK(count(g.deck, "gp_" + std::string(block)) == 0);
+      }
+      CHECK(g.circuit.uses("dead_zone"));
+      CHECK(count(g.deck, "left out: block 2 primary bearing friction") == 1);
+      CHECK(count(g.deck, "left out: blocks 16/17 self-locking") == 1);
+    }
+}
+
+TEST_CASE("the self-locking deck has the friction, absolute-value and self-locking blocks", "[netlist]") {
+  for (Level level : {Level::ideal, Level::hardware}) {
+    const Generated g = generate("bild6c", level);
+    CHECK(g.circuit.uses("limiter"));    // block 16, the steep characteristic
+    CHECK(g.circuit.uses("abs"));        // block 8, |M0| for the tooth friction
+    CHECK(g.circuit.uses("halfwave"));   // the reaction's two halves
+    CHECK(g.circuit.uses("comparator")); // block 17
+    CHECK(count(g.deck, "block 16") >= 1);
+    CHECK(count(g.deck, ".param alpha_lock=") == 1);
+  }
+}
+
+TEST_CASE("zero backlash has no dead zone", "[netlist]") {
+  const Scene scene = parse_scene(testing::gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1\n"), "nb.ini");
+  const Generated g = generate(scene, Level::ideal);
+  CHECK(!g.circuit.uses("dead_zone"));
+  CHECK(!g.circuit.uses("comparator"));
+  CHECK(count(g.deck, "left out: block 5 dead zone: no backlash") == 1);
+}
+
+TEST_CASE("each setting is one .param used by the elements it sets", "[netlist]") {
+  for (Level level : {Level::ideal, Level::hardware}) {
+    const Generated g = generate("bild6c", level);
+    const std::regex param(R"(^\.param (\w+)=)", std::regex::multiline);
+    int params = 0;
+    for (auto it = std::sregex_iterator(g.deck.begin(), g.deck.end(), param); it != std::sregex_iterator(); ++it) {
+      const std::string name = (*it)[1];
+      INFO(name);
+      CHECK(count(g.deck, ".param " + name + "=") == 1);
+      CHECK(count(g.deck, "{" + name) >= 1);  // used: setting={alpha3}, {a}, {alpha6*10}
+      ++params;
+    }
+    CHECK(params >= 10);
+    CHECK(count(g.deck, "uic") == 0);
+    CHECK(count(g.deck, ".ic v(wp)=") == 1);
+    CHECK(count(g.deck, ".ic v(ws)=") == 1);
+    CHECK(count(g.deck, ".ic v(x)=") == 1);
+  }
+}
+
+TEST_CASE("numbers in a deck do not depend on the locale", "[netlist]") {
+  const std::string before = generate("bild6b", Level::hardware).deck;
+  const char* previous = std::setlocale(LC_NUMERIC, nullptr);
+  const std::string saved = previous ? previous : "C";
+  if (std::setlocale(LC_NUMERIC, "de_DE.UTF-8") || std::setlocale(LC_NUMERIC, "fr_FR.UTF-8")) {
+    CHECK(generate("bild6b", Level::hardware).deck == before);
+  }
+  std::setlocale(LC_NUMERIC, saved.c_str());
+  CHECK(!std::regex_search(before, std::regex(R"(=\d+,\d)")));
+}
+
+TEST_CASE("the netlist command writes the deck and names what it left out", "[netlist][cli]") {
+  const std::string out = (std::filesystem::temp_directory_path() / "gearpatch-netlist-test.cir").string();
+  std::string output;
+  const int status = testing::run_command(std::string(GEARPATCH_BINARY) + " netlist " +
+                                              testing::source_path("scenes/bild5a.ini") + " --level hardware -o " + out,
+                                          output);
+  CHECK(status == 0);
+  CHECK_THAT(output, Catch::Contains("left out: block 2 primary bearing friction: k_Rp = 0"));
+  CHECK(read_file(out) == generate("bild5a", Level::hardware).deck);
+  CHECK(testing::run_command(std::string(GEARPATCH_BINARY) + " netlist " +
+                                 testing::source_path("scenes/bild5a.ini") + " --level exact",
+                             output) == 2);
+  CHECK_THAT(output, Catch::Contains("exact"));
+}
