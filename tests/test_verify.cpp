@@ -76,6 +76,17 @@ TEST_CASE("at the hardware level a scene passes within tolerance or fails with a
       CHECK(!r.diagnosis.empty());
     }
   }
+  // the causes named are the ones behind the failure
+  o.autoscale = true;
+  const auto named = [&](const std::string& scene) {
+    std::string all;
+    for (const auto& d : verify::verify(testing::example_scene(scene), o, *ngspice).diagnosis) all += d + "\n";
+    return all;
+  };
+  CHECK_THAT(named("bild5b"), Catch::Contains("comparator offset δ1"));
+  CHECK_THAT(named("bild6c"), Catch::Contains("op-amp offset: the int_s integrator"));
+  const verify::VerifyResult headroom = verify::verify(testing::example_scene("bild5a"), o, *ngspice);
+  CHECK(headroom.overloads.empty());
 }
 
 TEST_CASE("verify fails when one potentiometer is off by 20 %", "[verify][ngspice][cli]") {

@@ -336,4 +336,6 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
   return render(level, kind, ctx);
 }
 
+double hardware_opamp_offset_volts() { return HardwareFigures::opamp_vos; }
+
 }  // namespace gearpatch::circuit

@@ -48,6 +48,10 @@ const BlockInfo& block_info(std::string_view block);
 /// own output). Integrator and summer inputs are R/n at both levels.
 double input_load(Level level, std::string_view block, const MachineProfile& machine);
 
+/// The input offset voltage of the hardware op-amp model (TL071 class), V:
+/// it makes every hardware integrator drift, which `verify` uses to diagnose.
+double hardware_opamp_offset_volts();
+
 /// Shared lines every deck of that level needs once, before any block:
 /// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
 std::string render_models(Level level, const MachineProfile& machine);

@@ -222,7 +222,9 @@ std::vector<std::string> Circuit::amplifier_outputs() const {
   std::vector<std::string> nodes;
   for (const auto& a : amplifiers) nodes.push_back(a.out);
   for (const auto& b : blocks)
-    if (b.block != "switch" && b.block != "potentiometer" && b.block != "comparator")
+    // Comparators, limiters and the half-wave of the limited lock reaction sit
+    // at ±1 MU (or the rails) by design: that is their function, not an overload.
+    if (b.block == "dead_zone" || b.block == "abs")
       for (std::size_t i = 1; i < b.nodes.size(); ++i) nodes.push_back(b.nodes[i]);
   return nodes;
 }

@@ -72,7 +72,9 @@ struct Circuit {
   double beta = 1;                              ///< machine time = β · real time
   double duration = 1;                          ///< real time, s
 
-  std::vector<std::string> amplifier_outputs() const;  ///< every node an op-amp drives
+  /// Every node an op-amp drives in its linear range (the overload check);
+  /// comparators, limiters and the lock's half-wave saturate by design.
+  std::vector<std::string> amplifier_outputs() const;
   bool uses(const std::string& block) const;
 };
 

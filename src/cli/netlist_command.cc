@@ -19,6 +19,8 @@ int run_netlist(const std::vector<std::string>& args) {
        "ideal: high-gain op-amps, exact potentiometers, ideal function generators; "
        "hardware: TL071-class op-amps, resistor and capacitor values of the machine, "
        "potentiometers as loaded dividers, 1N4148 diodes, DG419-class switches")
+      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
+       "(as settings --autoscale) instead of the paper's a-priori maxima")
       ("output,o", po::value<std::string>(), "deck file (default stdout)");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [-o FILE.cir]\n\n"
@@ -31,7 +33,8 @@ int run_netlist(const std::vector<std::string>& args) {
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
   const Scene scene = load_scene(scenes.front());
   PatchOptions patch_options;
-  patch_options.check_peaks = false;
+  patch_options.autoscale = vm.count("autoscale") > 0;
+  patch_options.check_peaks = patch_options.autoscale;
   patch_options.comparator_offset = circuit::comparator_offset(level);
   const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, patch_options), level);
   const std::string deck = circuit::render_netlist(c, level, scene.machine);

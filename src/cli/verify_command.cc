@@ -20,6 +20,8 @@ int run_verify(const std::vector<std::string>& args) {
                    "and impact times within this fraction of the run (default {} ideal, {} hardware)",
                    verify::default_tolerance(circuit::Level::ideal),
                    verify::default_tolerance(circuit::Level::hardware)).c_str())
+      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
+       "(as settings --autoscale) instead of the paper's a-priori maxima")
       ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
@@ -40,6 +42,7 @@ int run_verify(const std::vector<std::string>& args) {
     o.tolerance = vm["tolerance"].as<double>();
     if (!(*o.tolerance > 0)) throw Error("--tolerance must be > 0");
   }
+  o.autoscale = vm.count("autoscale") > 0;
   if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
   const double timeout = vm["timeout"].as<double>();
   if (!(timeout > 0)) throw Error("--timeout must be > 0");

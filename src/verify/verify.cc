@@ -7,6 +7,7 @@
 #include "circuit/circuit.h"
 #include "model/gear_model.h"
 #include "scaling/patch.h"
+#include "verify/diagnosis.h"
 #include "scene/scene.h"
 #include "solver/integrate.h"
 
@@ -18,7 +19,7 @@ double default_tolerance(circuit::Level level) {
 
 namespace {
 
-void judge(const Patch& patch, VerifyResult& r) {
+void judge(VerifyResult& r) {
   for (const SignalError& e : r.comparison.signals)
     if (e.max_error > r.tolerance)
       r.failures.push_back(fmt::format(
@@ -37,17 +38,6 @@ void judge(const Patch& patch, VerifyResult& r) {
     r.failures.push_back(fmt::format("overload: amplifier output {} reaches {:.4g} MU at t = {:.6g} s",
                                      o.node, o.value, o.t));
   r.passed = r.failures.empty();
-  if (r.passed) return;
-  if (!r.overloads.empty())
-    r.diagnosis.push_back("an amplifier overloads: raise the maximum of that signal (or use settings --autoscale)");
-  for (const Potentiometer& p : patch.potentiometers)
-    if (p.setting < 0.1 && p.setting > 0)
-      r.diagnosis.push_back(fmt::format("{} is set to {:.4g} (< 0.1): small settings are imprecise on "
-                                        "hardware; change β or the maxima", p.name, p.setting));
-  if (r.level == circuit::Level::hardware)
-    r.diagnosis.push_back("hardware level: op-amp offset and bias currents make the integrators "
-                          "drift; diode drops round the dead-zone and friction corners; "
-                          "comparator offsets δ1, δ2 delay the switching");
 }
 
 }  // namespace
@@ -59,6 +49,7 @@ VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Sim
   r.tolerance = options.tolerance.value_or(default_tolerance(options.level));
   PatchOptions patch_options;
   patch_options.comparator_offset = circuit::comparator_offset(options.level);
+  patch_options.autoscale = options.autoscale;
   const Patch patch = make_patch(scene, patch_options);
   const circuit::Circuit circuit = circuit::build_circuit(scene, patch, options.level);
   r.beta = circuit.beta;
@@ -80,7 +71,9 @@ VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Sim
   r.jump_window = r.tolerance * scene.duration;
   r.comparison = compare(r.reference, r.circuit, model, scales, scene.duration, r.jump_window);
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
-  judge(patch, r);
+  judge(r);
+  if (!r.passed)
+    r.diagnosis = diagnose(r, patch, circuit, model.parameters(), scene.duration, scene.machine);
   return r;
 }
 

@@ -20,6 +20,7 @@ struct VerifyOptions {
   circuit::Level level = circuit::Level::ideal;
   std::optional<double> tolerance;      ///< fraction of full scale; default per level
   std::optional<std::string> deck_text; ///< a deck a person edited, instead of the generated one
+  bool autoscale = false;               ///< scale from the simulated peaks + 10 % (settings --autoscale)
   circuit::TransientControl transient;
   spice::RunLimits limits;
 };
