@@ -21,8 +21,9 @@ int run_settings(const std::vector<std::string>& args) {
       ("no-check", "skip the simulation that checks every peak against its scale")
       ("exact-maxima", "keep the estimated speed maxima as computed instead of rounding them "
        "up to 1, 2, 5 × 10^n")
-      ("comparator-offset", po::value<double>()->default_value(1e-3, "0.001"),
-       "comparator offsets δ1, δ2 in machine units");
+      ("comparator-offset", po::value<double>()->default_value(5e-3, "0.005"),
+       "comparator offsets δ1, δ2 in machine units: above the comparators' hysteresis and the "
+       "op-amps' zero errors (the ideal netlist uses 1e-5)");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
                        "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"

@@ -31,7 +31,10 @@ struct PatchOptions {
   double headroom = 0.1;     ///< autoscale: maximum = peak·(1 + headroom)
   bool round_speeds = true;  ///< round estimated speed maxima up to 1-2-5 × 10^n
   std::optional<double> beta;       ///< overrides the scene's machine.time_scale
-  double comparator_offset = 1e-3;  ///< δ1, δ2 in MU (the paper: "by experiment")
+  /// δ1, δ2 in MU (the paper: "by experiment"). The default suits a real
+  /// machine: it clears the comparators' hysteresis and the op-amps' offsets
+  /// (circuit::comparator_offset(Level::hardware)); the ideal deck uses less.
+  double comparator_offset = 5e-3;
 };
 
 /// The program for one scene: time scale, maxima, every potentiometer the

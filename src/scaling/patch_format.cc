@@ -102,8 +102,8 @@ void settings_section(const Patch& patch, std::string& out) {
     out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} threshold of the dead zone on X "
                        "(block 5)\n", "a", *patch.dead_zone, *patch.dead_zone, "", "", pad("ε/Δφm", 42));
   if (patch.delta1 > 0)
-    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} offset of the damping-switch "
-                       "comparator on |X'| (blocks 7/9)\n", "delta1", patch.delta1, patch.delta1, "", "",
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} offset of the contact "
+                       "comparators that switch the damping (blocks 7/9)\n", "delta1", patch.delta1, patch.delta1, "", "",
                        pad("by experiment (default)", 42));
   if (patch.delta2 > 0)
     out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} offset of the self-locking "

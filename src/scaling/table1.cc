@@ -106,8 +106,8 @@ void coupling(Builder& b, const GearParameters& p, const Maxima& m) {
            "m summer (6.8), from X'");
   if (p.damping > 0)
     b.summer("alpha14", "d·Δφ̇'m/M0m", p.damping * m.relative_speed / m.torque,
-             backlash ? "m summer (6.8), from DW switched by the comparator on |X'| "
-                        "(blocks 7/9, offset delta1): damping only in contact"
+             backlash ? "m summer (6.8), from DW switched by the contact comparators "
+                        "X' > delta1, X' < -delta1 (blocks 7/9): damping only in contact"
                       : "m summer (6.8), from DW (no backlash: always in contact, no switch)");
   else
     b.unused("alpha14", "no damping (d = 0, k = 1): blocks 7/9 left out");
