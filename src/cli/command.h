@@ -20,5 +20,7 @@ int run_simulate(const std::vector<std::string>& args);
 int run_settings(const std::vector<std::string>& args);
 int run_netlist(const std::vector<std::string>& args);
 int run_verify(const std::vector<std::string>& args);
+int run_bench(const std::vector<std::string>& args);
+int run_reduce(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli
