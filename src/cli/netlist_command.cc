@@ -28,10 +28,9 @@ int run_netlist(const std::vector<std::string>& args) {
                        "ngspice deck, with only the blocks the scene needs; says which were left out.",
                        options, vm))
     return 0;
-  const auto scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() != 1) throw Error("netlist takes one SCENE");
+  const std::string file = single_file(vm, "netlist");
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
-  const Scene scene = load_scene(scenes.front());
+  const Scene scene = load_scene(file);
   PatchOptions patch_options;
   patch_options.autoscale = vm.count("autoscale") > 0;
   patch_options.check_peaks = patch_options.autoscale;

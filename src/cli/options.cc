@@ -28,4 +28,10 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
   return true;
 }
 
+std::string single_file(const po::variables_map& vm, const std::string& command, const std::string& what) {
+  const auto files = vm["scene"].as<std::vector<std::string>>();
+  if (files.size() != 1) throw Error(command + " takes one " + what);
+  return files.front();
+}
+
 }  // namespace gearpatch::cli

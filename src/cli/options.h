@@ -14,4 +14,8 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
                      po::options_description options, po::variables_map& vm,
                      bool scene_required = true);
 
+/// The one positional file a command takes; Error "<command> takes one <what>" otherwise.
+std::string single_file(const po::variables_map& vm, const std::string& command,
+                        const std::string& what = "SCENE");
+
 }  // namespace gearpatch::cli

@@ -22,9 +22,8 @@ int run_reduce(const std::vector<std::string>& args) {
                        "responses of the n members and of the one coupling part.",
                        options, vm))
     return 0;
-  const auto files = vm["scene"].as<std::vector<std::string>>();
-  if (files.size() != 1) throw Error("reduce takes one STAGES file");
-  const auto stages = load_stages(files.front());
+  const std::string file = single_file(vm, "reduce", "STAGES");
+  const auto stages = load_stages(file);
   const StageReduction r = reduce_stages(stages);
   std::string table = fmt::format("{:<8} {:>14} {:>14} {:>12}\n", "stage", "c [N·m/rad]", "d [N·m·s/rad]", "d/c [s]");
   for (std::size_t i = 0; i < stages.size(); ++i)

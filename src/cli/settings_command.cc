@@ -32,8 +32,7 @@ int run_settings(const std::vector<std::string>& args) {
                        "Overloads are warnings (exit 0); an unreachable coefficient is an error (2).",
                        options, vm))
     return 0;
-  const auto scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() != 1) throw Error("settings takes one SCENE");
+  const std::string file = single_file(vm, "settings");
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
   o.check_peaks = vm.count("no-check") == 0;
@@ -42,7 +41,7 @@ int run_settings(const std::vector<std::string>& args) {
   o.round_speeds = vm.count("exact-maxima") == 0;
   o.comparator_offset = vm["comparator-offset"].as<double>();
   if (vm.count("beta")) o.beta = vm["beta"].as<double>();
-  const Patch patch = make_patch(load_scene(scenes.front()), o);
+  const Patch patch = make_patch(load_scene(file), o);
   const std::string text = vm.count("json") ? to_json(patch) : to_table(patch);
   if (vm.count("out")) write_file_atomically(vm["out"].as<std::string>(), text);
   else std::fputs(text.c_str(), stdout);

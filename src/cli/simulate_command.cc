@@ -26,9 +26,8 @@ int run_simulate(const std::vector<std::string>& args) {
                        "Runs the reference model of the paper's equations (6.1)-(6.10) and\n"
                        "writes the trajectory in physical units and real time.", options, vm))
     return 0;
-  const auto scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() != 1) throw Error("simulate takes one SCENE");
-  const Scene scene = load_scene(scenes.front());
+  const std::string file = single_file(vm, "simulate");
+  const Scene scene = load_scene(file);
   RunSpec spec = RunSpec::from_scene(scene);
   if (vm.count("dt")) {
     spec.output_step = vm["dt"].as<double>();
