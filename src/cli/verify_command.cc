@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <fmt/format.h>
 
+#include "bench/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
 #include "common/atomic_file.h"
@@ -22,6 +23,8 @@ int run_verify(const std::vector<std::string>& args) {
                    verify::default_tolerance(circuit::Level::hardware)).c_str())
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
        "(as settings --autoscale) instead of the paper's a-priori maxima")
+      ("quality", po::value<std::string>()->default_value(std::string(bench::default_quality())),
+       (bench::quality_help() + "; ignored with --deck").c_str())
       ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
@@ -43,6 +46,7 @@ int run_verify(const std::vector<std::string>& args) {
     if (!(*o.tolerance > 0)) throw Error("--tolerance must be > 0");
   }
   o.autoscale = vm.count("autoscale") > 0;
+  o.transient = bench::quality_preset(vm["quality"].as<std::string>()).control;
   if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
   const double timeout = vm["timeout"].as<double>();
   if (!(timeout > 0)) throw Error("--timeout must be > 0");

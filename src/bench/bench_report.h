@@ -1,0 +1,25 @@
+#pragma once
+#include <string>
+
+#include "bench/bench.h"
+
+namespace gearpatch::bench {
+
+/// A table per scene (every point: error, time, front, verdict), the knobs
+/// over all scenes, the presets and exact against adaptive.
+std::string to_table(const BenchResult& result);
+
+/// Every number of the run, with the machine, as JSON.
+std::string to_json(const BenchResult& result);
+
+/// The README section: machine, presets, the knobs over all scenes, exact
+/// against adaptive, the plot and the command that reproduces them.
+std::string to_markdown(const BenchResult& result, const std::string& plot_path = "");
+
+/// The work–precision plot through gnuplot: error against time, log–log, one
+/// panel for all scenes (worst error, total ngspice time) and one per scene,
+/// a series per knob family, the Pareto front of the ngspice points as a
+/// line. PNG or SVG by the extension; written atomically.
+void write_plot(const BenchResult& result, const std::string& path);
+
+}  // namespace gearpatch::bench

@@ -1,0 +1,20 @@
+#pragma once
+#include <vector>
+
+namespace gearpatch::bench {
+
+/// One measured configuration in the speed/accuracy plane: both are costs.
+struct TradePoint {
+  double seconds = 0;  ///< run time
+  double error = 0;    ///< error against the exact reference, fraction of full scale
+};
+
+/// True if `a` dominates `b`: no slower, no less accurate, and better in one.
+bool dominates(const TradePoint& a, const TradePoint& b);
+
+/// The Pareto front: flags[i] is true when no other point dominates point i.
+/// A point with a non-finite or negative coordinate (a failed run) is never on
+/// the front and dominates nothing; equal points are all on it.
+std::vector<bool> pareto_front(const std::vector<TradePoint>& points);
+
+}  // namespace gearpatch::bench

@@ -1,0 +1,84 @@
+#include "bench/quality.h"
+
+#include <cmath>
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "common/numbers.h"
+
+namespace gearpatch::bench {
+
+// The measured numbers below are copied from bench/results/examples.json
+// ("presets"), written by the command in preset_source(); a test checks that
+// they agree with that file, so rerun the bench and update both together.
+const std::vector<QualityPreset>& quality_presets() {
+  // name, summary, {output points, max step points, reltol, method},
+  // measured worst error, median error, total ngspice CPU seconds
+  static const std::vector<QualityPreset> presets = {
+      {"draft", "a quick look: coarse steps and a loose reltol; errors of a few % of full scale",
+       {500, 300, 1e-5, "trap"}, NAN, NAN, NAN},
+      {"normal", "the default: the fastest measured setting whose worst error stays at the circuits' own floor",
+       {2000, 500, 1e-7, "trap"}, NAN, NAN, NAN},
+      {"precise", "fine steps, tight reltol, the stiffly stable gear method: the smallest typical error",
+       {8000, 8000, 1e-8, "gear"}, NAN, NAN, NAN},
+  };
+  return presets;
+}
+
+const QualityPreset& quality_preset(std::string_view name) {
+  for (const QualityPreset& p : quality_presets())
+    if (p.name == name) return p;
+  std::string names;
+  for (const QualityPreset& p : quality_presets()) names += (names.empty() ? "" : ", ") + p.name;
+  throw Error(fmt::format("--quality {}: must be one of {}", name, names));
+}
+
+std::string_view default_quality() { return "normal"; }
+
+std::string preset_source() {
+  return "measured by `gearpatch bench scenes/*.ini --json bench/results/examples.json` "
+         "(bench/results/examples.json: 7 example scenes, ideal level)";
+}
+
+bool same_control(const circuit::TransientControl& a, const circuit::TransientControl& b) {
+  return a.output_points == b.output_points && a.max_step_points == b.max_step_points &&
+         a.reltol == b.reltol && a.method == b.method;
+}
+
+std::string describe(const circuit::TransientControl& c) {
+  return fmt::format("out={} tmax=T/{} reltol={} {}", c.output_points, format_number(c.max_step_points),
+                     format_number(c.reltol), c.method);
+}
+
+namespace {
+
+std::string measured(const QualityPreset& p) {
+  if (!std::isfinite(p.measured_worst_error)) return "not measured yet";
+  return fmt::format("error {:.2g} % of full scale worst, {:.2g} % median, {:.2g} s ngspice CPU",
+                     100 * p.measured_worst_error, 100 * p.measured_median_error, p.measured_total_seconds);
+}
+
+}  // namespace
+
+std::string quality_help() {
+  std::string text = "ngspice accuracy preset (default normal); measured on the 7 example scenes together: ";
+  for (const QualityPreset& p : quality_presets())
+    text += fmt::format("{}{} = {}, {}", &p == &quality_presets().front() ? "" : "; ", p.name,
+                        describe(p.control), measured(p));
+  return text + " (" + preset_source() + ")";
+}
+
+std::string quality_markdown() {
+  std::string text =
+      "| preset | output points | max step | reltol | method | worst error (% of full scale) | "
+      "median error (%) | ngspice CPU, 7 scenes (s) |\n|---|---|---|---|---|---|---|---|\n";
+  for (const QualityPreset& p : quality_presets())
+    text += fmt::format("| `{}`{} | {} | T/{} | {} | {} | {:.2g} | {:.2g} | {:.2g} |\n", p.name,
+                        p.name == default_quality() ? " (default)" : "", p.control.output_points,
+                        format_number(p.control.max_step_points), format_number(p.control.reltol),
+                        p.control.method, 100 * p.measured_worst_error, 100 * p.measured_median_error,
+                        p.measured_total_seconds);
+  return text;
+}
+
+}  // namespace gearpatch::bench

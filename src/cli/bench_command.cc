@@ -1,0 +1,118 @@
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+
+#include "bench/bench.h"
+#include "bench/bench_report.h"
+#include "bench/quality.h"
+#include "cli/command.h"
+#include "cli/options.h"
+#include "common/atomic_file.h"
+#include "common/error.h"
+
+namespace gearpatch::cli {
+namespace {
+
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const auto comma = text.find(',', start);
+    const std::string item = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (!item.empty()) out.push_back(item);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+/// scenes/*.ini in the working directory, sorted: the example scenes.
+std::vector<std::string> example_scene_files() {
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  if (fs::is_directory("scenes"))
+    for (const auto& entry : fs::directory_iterator("scenes"))
+      if (entry.path().extension() == ".ini") files.push_back(entry.path().string());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+}  // namespace
+
+int run_bench(const std::vector<std::string>& args) {
+  const std::vector<std::string> families = {"reference", "max-step", "reltol", "method", "grid",
+                                             "preset",    "level",    "deck-default"};
+  po::options_description options("bench options");
+  options.add_options()
+      ("json", po::value<std::string>(), "write every number, with the machine it ran on, as JSON to FILE")
+      ("plot", po::value<std::string>(), "write the work-precision plot (error against time, log-log, "
+       "Pareto front marked) to FILE (.png or .svg, gnuplot)")
+      ("markdown", po::value<std::string>(), "write the README section (tables, machine, command) to FILE")
+      ("only", po::value<std::string>(), "measure only these comma-separated families: reference (exact and "
+       "adaptive solvers), max-step, reltol, method, grid, preset, level, deck-default (verify's default "
+       "settings always run)")
+      ("min-time", po::value<double>()->default_value(0.2), "reference solvers: each timing repetition "
+       "runs the solver until this many seconds have passed")
+      ("repeat", po::value<int>()->default_value(3), "reference solvers: timing repetitions (median taken)")
+      ("ngspice-repeat", po::value<int>()->default_value(5), "ngspice runs per point (median time taken)")
+      ("timeout", po::value<double>()->default_value(120), "ngspice wall-clock limit per run, s");
+  po::variables_map vm;
+  if (!parse_arguments(
+          args,
+          "usage: gearpatch bench [SCENE ...] [options]\n\n"
+          "Measures every knob that trades speed for accuracy on each scene (default:\n"
+          "scenes/*.ini) against the exact reference model:\n"
+          "  reference solvers  exact, and adaptive at tolerances 1e-3 ... 1e-12 (time per run,\n"
+          "                     repeated until --min-time, median of --repeat)\n"
+          "  ngspice            verify's default (--quality normal), then one knob at a time:\n"
+          "                     max step T/500, 2000, 4000, 16000; reltol 1e-3, 1e-5, 1e-7,\n"
+          "                     1e-9; method trap, gear; output grid 500, 2000, 8000 points;\n"
+          "                     the other quality presets; the hardware level; the netlist\n"
+          "                     command's default settings (ngspice CPU time, median of\n"
+          "                     --ngspice-repeat runs)\n"
+          "Error: fraction of full scale (ngspice: verify's worst signal error or impact shift;\n"
+          "adaptive: |adaptive - exact| on the scene's grid). Prints a table per scene, the\n"
+          "knobs over all scenes with their Pareto front, the presets, and exact against\n"
+          "adaptive at matched accuracy. Progress goes to stderr. Takes a few minutes on the\n"
+          "7 example scenes.\n\n" +
+              std::string("presets: ") + bench::preset_source() + "\n" + bench::quality_help(),
+          options, vm, false))
+    return 0;
+  bench::BenchOptions o;
+  o.scene_files = vm.count("scene") ? vm["scene"].as<std::vector<std::string>>() : example_scene_files();
+  if (o.scene_files.empty()) throw Error("no SCENE given and no scenes/*.ini here (see --help)");
+  if (vm.count("only")) {
+    const auto chosen = split_list(vm["only"].as<std::string>());
+    for (const std::string& f : chosen)
+      if (std::find(families.begin(), families.end(), f) == families.end())
+        throw Error(fmt::format("--only {}: not a family (reference, max-step, reltol, method, grid, preset, "
+                                "level, deck-default)", f));
+    o.reference = std::find(chosen.begin(), chosen.end(), "reference") != chosen.end();
+    o.knobs = bench::select_knobs(o.knobs, chosen);
+  }
+  o.min_seconds = vm["min-time"].as<double>();
+  if (!(o.min_seconds >= 0)) throw Error("--min-time must be >= 0");
+  o.repetitions = vm["repeat"].as<int>();
+  o.ngspice_repetitions = vm["ngspice-repeat"].as<int>();
+  if (o.repetitions < 1 || o.ngspice_repetitions < 1) throw Error("--repeat and --ngspice-repeat must be >= 1");
+  const double timeout = vm["timeout"].as<double>();
+  if (!(timeout > 0)) throw Error("--timeout must be > 0");
+  o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
+  o.command = "gearpatch bench";
+  for (const std::string& a : args) o.command += " " + a;
+  o.progress = [](const std::string& line) { std::fprintf(stderr, "gearpatch bench: %s\n", line.c_str()); };
+  o.machine = bench::collect_machine_info();
+
+  auto simulator = spice::make_batch_ngspice();
+  const bench::BenchResult result = bench::run_bench(o, *simulator);
+  if (vm.count("json")) write_file_atomically(vm["json"].as<std::string>(), bench::to_json(result));
+  if (vm.count("plot")) bench::write_plot(result, vm["plot"].as<std::string>());
+  if (vm.count("markdown"))
+    write_file_atomically(vm["markdown"].as<std::string>(),
+                          bench::to_markdown(result, vm.count("plot") ? vm["plot"].as<std::string>() : ""));
+  std::fputs(bench::to_table(result).c_str(), stdout);
+  return 0;
+}
+
+}  // namespace gearpatch::cli
