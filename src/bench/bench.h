@@ -134,7 +134,7 @@ struct BenchOptions {
   std::vector<double> tolerances = standard_tolerances();
   std::vector<Knob> knobs = standard_knobs();
   double min_seconds = 0.2;
-  int repetitions = 3;
+  int repetitions = 5;
   int ngspice_repetitions = 5;
   spice::RunLimits limits;
   std::string command;

@@ -209,8 +209,19 @@ std::string to_markdown(const BenchResult& r, const std::string& plot_path) {
       md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", label, knob_settings(k), sci(a.worst_error),
                         a.worst_scene, sci(a.median_error), secs(a.total_seconds), presets_of(k));
     }
-    md += fmt::format("\nThe default (`normal`) is {}on the Pareto front.\n\n",
-                      r.default_on_front ? "" : "**not** ");
+    md += fmt::format("\nThe default (`normal`) is {}on the Pareto front of time and worst error, and {}on "
+                      "the front of time and median error.\n\n",
+                      r.default_on_front ? "" : "**not** ", r.default_on_median_front ? "" : "**not** ");
+    if (!r.presets.empty()) {
+      md += "The quality presets as measured in this run (`verify --quality NAME`):\n\n"
+            "| preset | level, settings | worst error | median error | time (s) | on the front (worst / median) |\n"
+            "|---|---|---|---|---|---|\n";
+      for (const PresetResult& p : r.presets)
+        md += fmt::format("| `{}` | {} | {} | {} | {} | {} / {} |\n", p.name, knob_settings(r.knobs[p.knob]),
+                          sci(p.worst_error), sci(p.median_error), secs(p.total_seconds), p.pareto ? "yes" : "no",
+                          p.median_pareto ? "yes" : "no");
+      md += "\n";
+    }
   }
   bool any_solvers = false;
   for (const SceneResult& s : r.scenes) any_solvers = any_solvers || s.solvers.has_value();
@@ -219,7 +230,7 @@ std::string to_markdown(const BenchResult& r, const std::string& plot_path) {
           "matched accuracy — the adaptive run whose error is closest to the exact solver's — and at "
           "each tolerance (time per run, median):\n\n";
     md += "| scene | exact (s) | exact error (est.) | matched tolerance | its error | adaptive (s) | speed-up |";
-    for (double t : r.tolerances) md += fmt::format(" ×, {} |", format_number(t));
+    for (double t : r.tolerances) md += fmt::format(" × at {} |", format_number(t));
     md += "\n|---|---|---|---|---|---|---|";
     for (std::size_t i = 0; i < r.tolerances.size(); ++i) md += "---|";
     md += "\n";
@@ -235,7 +246,14 @@ std::string to_markdown(const BenchResult& r, const std::string& plot_path) {
       }
       md += "\n";
     }
-    md += "\n";
+    int measured = 0, fast = 0;
+    for (const SceneResult& s : r.scenes)
+      if (s.solvers && s.solvers->matched) {
+        ++measured;
+        fast += s.solvers->at_least_100x;
+      }
+    md += fmt::format("\nThe exact solver is at least 100× faster than the adaptive one at matched accuracy on "
+                      "{} of {} scenes.\n\n", fast, measured);
   }
   if (!plot_path.empty())
     md += fmt::format("![work-precision plot: error against time, log-log, Pareto front of the ngspice "

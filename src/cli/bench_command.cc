@@ -54,7 +54,7 @@ int run_bench(const std::vector<std::string>& args) {
        "settings always run)")
       ("min-time", po::value<double>()->default_value(0.2), "reference solvers: each timing repetition "
        "runs the solver until this many seconds have passed")
-      ("repeat", po::value<int>()->default_value(3), "reference solvers: timing repetitions (median taken)")
+      ("repeat", po::value<int>()->default_value(5), "reference solvers: timing repetitions (median taken)")
       ("ngspice-repeat", po::value<int>()->default_value(5), "ngspice runs per point (median time taken)")
       ("timeout", po::value<double>()->default_value(120), "ngspice wall-clock limit per run, s");
   po::variables_map vm;
