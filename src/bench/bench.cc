@@ -42,6 +42,8 @@ volatile std::size_t sink = 0;
 
 Point failed_point(Point p, const std::string& why) {
   p.error = p.seconds = p.wall_seconds = kNaN;
+  p.samples.clear();
+  p.wall_samples.clear();
   p.failure = why;
   return p;
 }
@@ -91,40 +93,42 @@ void measure_reference(const Scene& scene, const BenchOptions& o, const std::str
   }
 }
 
-Point measure_knob(const Scene& scene, const Knob& knob, int index, const BenchOptions& o,
-                   spice::Simulator& simulator) {
+Point knob_point(const Knob& knob, int index) {
   Point p;
   p.family = knob.family;
   p.label = knob.label;
   p.ngspice = true;
   p.knob = index;
+  return p;
+}
+
+/// One ngspice run of the knob on the scene, added to the point: its CPU and
+/// wall time, and on the first run the errors and verdict. A failure marks
+/// the point failed; a failed point is not run again.
+void run_knob(const Scene& scene, const Knob& knob, const BenchOptions& o, spice::Simulator& simulator,
+              Point& p) {
+  if (!p.failure.empty()) return;
   verify::VerifyOptions vo;
   vo.level = knob.level;
   vo.transient = knob.control;
   vo.limits = o.limits;
-  std::vector<double> seconds, wall;
   try {
-    for (int r = 0; r < std::max(1, o.ngspice_repetitions); ++r) {
-      const double cpu_before = children_cpu_seconds();
-      const verify::VerifyResult result = verify::verify(scene, vo, simulator);
-      seconds.push_back(children_cpu_seconds() - cpu_before);
-      wall.push_back(result.ngspice_seconds);
-      if (r > 0) continue;
-      double error = result.comparison.worst_impact_shift;
-      for (const auto& s : result.comparison.signals) error = std::max(error, s.max_error);
-      p.error = error;
-      p.passed = result.passed;
-      p.failures = result.failures;
-    }
+    const double cpu_before = children_cpu_seconds();
+    const verify::VerifyResult result = verify::verify(scene, vo, simulator);
+    p.samples.push_back(children_cpu_seconds() - cpu_before);
+    p.wall_samples.push_back(result.ngspice_seconds);
+    if (p.samples.size() > 1) return;
+    double error = result.comparison.worst_impact_shift;
+    for (const auto& s : result.comparison.signals) error = std::max(error, s.max_error);
+    p.error = error;
+    p.passed = result.passed;
+    p.failures = result.failures;
   } catch (const std::exception& ex) {
-    return failed_point(p, ex.what());
+    p = failed_point(p, ex.what());
   }
-  p.seconds = median(seconds);
-  p.wall_seconds = median(wall);
-  return p;
 }
 
-void mark_front(std::vector<Point>& points) {
+void mark_front(std::vector<Point>& points, const Resolution& resolution) {
   std::vector<TradePoint> trade;
   std::vector<std::size_t> index;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -132,7 +136,7 @@ void mark_front(std::vector<Point>& points) {
       trade.push_back({points[i].seconds, points[i].error});
       index.push_back(i);
     }
-  const auto front = pareto_front(trade);
+  const auto front = pareto_front(trade, resolution);
   for (std::size_t j = 0; j < index.size(); ++j) points[index[j]].pareto = front[j];
 }
 
@@ -298,17 +302,57 @@ BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
       s.solvers = compare_solvers(s.points);
     }
     if (!o.knobs.empty()) {
-      // One unmeasured run first, so that the first knob does not pay for cold caches.
+      // One unmeasured run first, so that the first knob does not pay for cold
+      // caches; then the knobs in turn, repetition after repetition, so that a
+      // slow spell of the machine falls on all of them alike.
       if (o.progress) o.progress(where + ": ngspice warm-up");
-      measure_knob(scene, o.knobs.front(), 0, o, simulator);
+      Point warm_up = knob_point(o.knobs.front(), 0);
+      run_knob(scene, o.knobs.front(), o, simulator, warm_up);
+      const std::size_t first = s.points.size();
+      for (std::size_t k = 0; k < o.knobs.size(); ++k) s.points.push_back(knob_point(o.knobs[k], static_cast<int>(k)));
+      const int repetitions = std::max(1, o.ngspice_repetitions);
+      for (int rep = 0; rep < repetitions; ++rep)
+        for (std::size_t k = 0; k < o.knobs.size(); ++k) {
+          if (o.progress)
+            o.progress(fmt::format("{}: ngspice {} (run {}/{})", where, o.knobs[k].label, rep + 1, repetitions));
+          run_knob(scene, o.knobs[k], o, simulator, s.points[first + k]);
+        }
+      for (std::size_t k = 0; k < o.knobs.size(); ++k) {
+        Point& p = s.points[first + k];
+        if (!p.failure.empty()) continue;
+        p.seconds = median(p.samples);
+        p.wall_seconds = median(p.wall_samples);
+      }
     }
-    for (std::size_t k = 0; k < o.knobs.size(); ++k) {
-      if (o.progress) o.progress(where + ": ngspice " + o.knobs[k].label);
-      s.points.push_back(measure_knob(scene, o.knobs[k], static_cast<int>(k), o, simulator));
-    }
-    mark_front(s.points);
     r.scenes.push_back(std::move(s));
   }
+
+  // Timing resolution: the typical relative half-range of a knob's total time
+  // over the repetitions. Errors within 1 % count as equal: moving the
+  // comparison grid alone (output grid 500 or 8000) changes them by about that.
+  std::vector<double> spreads;
+  std::vector<std::vector<double>> totals(o.knobs.size());
+  for (std::size_t k = 0; k < o.knobs.size(); ++k) {
+    std::vector<double>& t = totals[k];
+    t.assign(std::max(1, o.ngspice_repetitions), 0.0);
+    bool complete = true;
+    for (const SceneResult& s : r.scenes)
+      for (const Point& p : s.points)
+        if (p.knob == static_cast<int>(k)) {
+          complete = complete && p.samples.size() == t.size();
+          for (std::size_t i = 0; i < p.samples.size() && i < t.size(); ++i) t[i] += p.samples[i];
+        }
+    if (!complete) {
+      t.clear();
+      continue;
+    }
+    const auto [lo, hi] = std::minmax_element(t.begin(), t.end());
+    const double m = median(t);
+    if (m > 0) spreads.push_back((*hi - *lo) / (2 * m));
+  }
+  r.resolution.seconds = spreads.empty() ? 0 : median(spreads);
+  r.resolution.error = 0.01;
+  for (SceneResult& s : r.scenes) mark_front(s.points, r.resolution);
 
   std::vector<TradePoint> worst, middle;
   for (std::size_t k = 0; k < o.knobs.size(); ++k) {
@@ -328,14 +372,15 @@ BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
           a.worst_scene = s.scene;
         }
         errors.push_back(p.error);
-        a.total_seconds += p.seconds;
       }
     a.median_error = std::isnan(a.worst_error) ? kNaN : median(errors);
+    // The median over the repetitions of the scenes' summed times.
+    a.total_seconds = std::isnan(a.worst_error) || totals[k].empty() ? kNaN : median(totals[k]);
     worst.push_back({a.total_seconds, a.worst_error});
     middle.push_back({a.total_seconds, a.median_error});
     r.aggregate.push_back(a);
   }
-  const auto front = pareto_front(worst), median_front = pareto_front(middle);
+  const auto front = pareto_front(worst, r.resolution), median_front = pareto_front(middle, r.resolution);
   for (std::size_t k = 0; k < r.aggregate.size(); ++k) {
     r.aggregate[k].pareto = front[k];
     r.aggregate[k].median_pareto = median_front[k];

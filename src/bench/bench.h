@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bench/machine_info.h"
+#include "bench/pareto.h"
 #include "circuit/block_library.h"
 #include "circuit/netlist.h"
 #include "solver/trajectory.h"
@@ -64,9 +65,10 @@ struct Point {
   /// up to 50 ms, which is as long as a whole run here.
   double seconds = 0;
   double wall_seconds = 0;  ///< ngspice: VerifyResult::ngspice_seconds, median
+  std::vector<double> samples, wall_samples;  ///< ngspice: CPU and wall time of each run
   bool error_is_estimate = false;  ///< exact solver: no better reference to compare with
   std::string failure;  ///< why the run failed (then error and seconds are NaN)
-  bool pareto = false;  ///< on the front of this scene's ngspice points
+  bool pareto = false;  ///< on the front of this scene's ngspice points (at BenchResult::resolution)
 };
 
 /// Exact against adaptive on one scene, both timed in the same run.
@@ -91,7 +93,8 @@ struct SceneResult {
   std::optional<SolverComparison> solvers;
 };
 
-/// One ngspice knob over all scenes: worst error and total time, the
+/// One ngspice knob over all scenes: worst error and total time (the median
+/// over the repetitions of the scenes' summed times), the
 /// Pareto front of those (the measure presets are chosen by); and the median
 /// error over the scenes with its own front, because one scene's circuit
 /// error can set the worst case for every knob.
@@ -123,6 +126,9 @@ struct BenchResult {
   std::vector<Knob> knobs;
   std::vector<SceneResult> scenes;
   std::vector<AggregatePoint> aggregate;  ///< one per knob
+  /// What the fronts count as equal: times within the typical relative
+  /// half-range of a knob's total time over the repetitions, errors within 1 %.
+  Resolution resolution;
   std::vector<PresetResult> presets;
   bool default_on_front = false;  ///< the knob "default" is on the aggregate (worst error) front
   bool default_on_median_front = false;

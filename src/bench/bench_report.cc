@@ -76,7 +76,8 @@ std::string to_table(const BenchResult& r) {
   }
   out += fmt::format("ngspice knobs over all {} scenes (error: worst and median over the scenes, fraction of "
                      "full scale; time: total ngspice CPU time; front: Pareto front of time and worst error, "
-                     "(m) of time and median error)\n", r.scenes.size());
+                     "(m) of time and median error; times within {:.1f} % and errors within {:.0f} % count as "
+                     "equal)\n", r.scenes.size(), 100 * r.resolution.seconds, 100 * r.resolution.error);
   out += fmt::format("  {:<34} {:<48} {:>10} {:<8} {:>10} {:>9} {:>9}\n", "knob", "settings", "worst err", "scene",
                      "median err", "total [s]", "front");
   for (const AggregatePoint& a : r.aggregate) {
@@ -128,6 +129,12 @@ std::string to_json(const BenchResult& r) {
       {"min_seconds", r.min_seconds},
       {"repetitions", r.repetitions},
       {"ngspice_repetitions", r.ngspice_repetitions}};
+  j["method"]["resolution"] = {
+      {"seconds", r.resolution.seconds},
+      {"error", r.resolution.error},
+      {"meaning", "the Pareto fronts count values within these relative differences as equal: times within "
+                  "the typical relative half-range of a knob's total time over the repetitions, errors within "
+                  "1 %"}};
   j["tolerances"] = r.tolerances;
   j["knobs"] = json::array();
   for (const Knob& k : r.knobs)
@@ -141,6 +148,7 @@ std::string to_json(const BenchResult& r) {
                  {"seconds", number(p.seconds)}};
       if (p.ngspice) {
         point["wall_seconds"] = number(p.wall_seconds);
+        point["samples"] = p.samples;
         point["knob"] = p.knob;
         point["passed"] = p.passed;
         point["failures"] = p.failures;
@@ -197,9 +205,10 @@ std::string to_markdown(const BenchResult& r, const std::string& plot_path) {
     md += fmt::format(
         "ngspice knobs, one at a time around the default, over all {} scenes. Error: fraction of full "
         "scale, the worst and the median over the scenes; time: total ngspice CPU time, median of {} "
-        "runs each. **Bold**: on the Pareto front of time and worst error; (m): on the front of time "
-        "and median error.\n\n",
-        r.scenes.size(), r.ngspice_repetitions);
+        "runs each, taken in turn. **Bold**: on the Pareto front of time and worst error; (m): on the "
+        "front of time and median error. The fronts count times within {:.1f} % (the typical spread over "
+        "the repetitions) and errors within {:.0f} % as equal.\n\n",
+        r.scenes.size(), r.ngspice_repetitions, 100 * r.resolution.seconds, 100 * r.resolution.error);
     md += "| knob | level, settings | worst error | worst scene | median error | time (s) | preset |\n"
           "|---|---|---|---|---|---|---|\n";
     for (const AggregatePoint& a : r.aggregate) {
