@@ -1,5 +1,10 @@
 #include <algorithm>
+#include <boost/math/tools/roots.hpp>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <vector>
 
 #include "solver/forced_oscillator.h"
 #include "solver/segment.h"
@@ -11,9 +16,18 @@ namespace {
 /// obeys u'' + (i_p + i_s·g)·(d·u' + c·u) = i_p·F_p − i_s·F_s; the speeds
 /// follow from the time integral of M0, which momentum balance gives without
 /// a quadrature: ∫M0 = (f·t − (u' − u'0)) / (i_p + i_s·g).
+///
+/// The intervals it hands the event locator are chosen so that a sign check
+/// at their ends cannot miss a guard crossing: in free flight every guard is
+/// monotone on both sides of the vertex; in contact an interval is at most
+/// 1/16 of a period (when not oscillating: a quarter of the fastest decay
+/// time, doubled at each step) and ends at the first local minimum of any
+/// guard that might reach zero, and stretches where no guard can reach zero
+/// are passed in one interval.
 class ExactSegment : public Segment {
  public:
-  ExactSegment(const ModeDynamics& d, const GearState& s, double t0, double horizon)
+  ExactSegment(const ModeDynamics& d, const std::vector<Guard>& guards, const GearState& s,
+               double t0, double horizon)
       : d_(d), s0_(s), t0_(t0), horizon_(horizon),
         weight_(d.inv_p + d.inv_s * d.gain_s),
         force_(d.inv_p * d.force_p - d.inv_s * d.force_s),
@@ -21,51 +35,243 @@ class ExactSegment : public Segment {
                     force_, s.dphi - d.offset, s.omega_p - s.omega_s) {
     end_ = t0;
     step_ = oscillator_.sampling_step();
-    max_step_ = oscillator_.slowest_sampling_step();
     const double vertex = oscillator_.vertex();
     if (!d.coupled && vertex > 0 && t0 + vertex < horizon) vertex_ = t0 + vertex;
+    if (step_ > 0) {
+      for (const Guard& g : guards) shapes_.push_back(shape(g.form));
+      wave_ = wave(0);
+    }
   }
 
   double advance() override {
     if (step_ <= 0) {  // free flight: monotone guards on both sides of the vertex
       end_ = end_ < vertex_ ? vertex_ : horizon_;
-    } else {
-      // Over-damped: after the fast decay only the slow one is left to sample.
-      end_ = std::min(horizon_, end_ + step_);
-      step_ = std::min(step_ * 1.25, max_step_);
+      return end_;
     }
+    const double a = end_;
+    const double b = std::min(horizon_, a + step_);
+    // Not oscillating (critically or over-damped): g'' changes sign at most
+    // once in all, so the minimum cut below keeps any interval safe and the
+    // steps may grow without bound once the fast decay is resolved.
+    if (!oscillator_.underdamped()) step_ *= 2;
+    if (!(b > a)) return end_ = b;
+    const Wave wa = wave_;
+    const double ta = a - t0_, tb = b - t0_;
+    // 1. Pass in one interval what no guard can reach: each guard is
+    //    lin(τ) + h(τ), and |h| never exceeds its bound at a.
+    double reach = horizon_;
+    for (const Shape& g : shapes_) {
+      const double bound = g.bound(wa, kappa()), margin = g.linear(ta) - bound - slack(g, ta, wa);
+      if (bound == 0 && g.linear(ta) >= 0 && g.l1 >= 0) continue;  // the oscillation has died out
+      if (!(margin > 0)) {
+        reach = a;
+        break;
+      }
+      if (g.l1 < 0) reach = std::min(reach, a + margin / -g.l1);
+    }
+    if (reach > b) {
+      end_ = reach;
+      wave_ = wave(end_ - t0_);
+      return end_;
+    }
+    // A step of a few ulps of t cannot resolve the oscillation: report no
+    // progress, which integrate() refuses with the period and the resolution.
+    if (b - a < 8 * (std::nextafter(a, INFINITY) - a)) return end_ = a;
+    // 2. End the interval at the first local minimum of any guard that might
+    //    reach zero on it, so that every guard's minimum on the interval is at
+    //    one of its ends: a guard that dips below zero and back between two
+    //    samples (a grazing release, a speed that just touches zero) is found.
+    const Wave wb = wave(tb);
+    double cut = b;
+    for (const Shape& g : shapes_) {
+      const double tolerance = slack(g, ta, wa);
+      const double lowest = std::min(g.linear(ta), g.linear(tb)) - g.bound(wa, kappa());
+      if (lowest > tolerance) continue;
+      // Nor can it dip below zero if both ends are higher than the deepest
+      // sag a curvature of at most sup|g''| allows between them: (b − a)²/8·sup|g''|.
+      const double sag = 0.125 * (tb - ta) * (tb - ta) * g.curvature_bound(wa, kappa());
+      if (std::min(g.value(wa, ta), g.value(wb, tb)) - sag > tolerance) continue;
+      const auto m = first_minimum(g, ta, tb, wa, wb);
+      if (!m || !(t0_ + *m < cut)) continue;
+      // Cut only at a dip that may go below zero and is deeper than rounding:
+      // a guard that starts on its boundary with g' = 0 to rounding (a shaft
+      // breaking away exactly at its friction level) has its minimum at the
+      // start, not a rounding-deep one just after it (first_minimum ignores
+      // slopes within rounding of zero for the same reason).
+      const double low = g.value(wave(*m), *m), start = g.value(wa, ta);
+      if (low <= tolerance && start - low > tolerance) cut = t0_ + *m;
+    }
+    if (!(cut > a)) cut = b;
+    end_ = cut;
+    wave_ = cut == b ? wb : wave(cut - t0_);
     return end_;
   }
 
+  /// The state from the changes since the segment start, so that it is exact
+  /// to relative precision close to the start: a speed that has just left
+  /// zero has the right sign, not the rounding of u'(τ) − u'(0).
   GearState state_at(double t) const override {
     const double tau = t - t0_;
-    double u, v;
-    oscillator_.at(tau, u, v);
-    const double impulse = d_.coupled && weight_ > 0
-                               ? (force_ * tau - (v - (s0_.omega_p - s0_.omega_s))) / weight_
-                               : 0.0;
+    const ForcedOscillator::Values& x = values(tau);
+    const double impulse = d_.coupled && weight_ > 0 ? (force_ * tau - x.dv) / weight_ : 0.0;
     GearState s;
     s.omega_p = s0_.omega_p + d_.inv_p * (d_.force_p * tau - impulse);
     s.omega_s = s0_.omega_s + d_.inv_s * (d_.force_s * tau + d_.gain_s * impulse);
-    s.dphi = d_.coupled ? d_.offset + u : u;
+    s.dphi = s0_.dphi + x.du;
     return s;
   }
 
  private:
+  /// The free part w = u − f/κ of the twist and its first four derivatives
+  /// (w'' = −δw' − κw and so on).
+  struct Wave {
+    double w = 0, w1 = 0, w2 = 0, w3 = 0, w4 = 0;
+  };
+
+  /// A guard within this mode: g(τ) = l0 + l1·τ + h(τ) with h = p·w + q·w'.
+  /// (The speeds are affine in τ plus the impulse −(u' − u'0)/weight, the
+  /// twist is offset + f/κ + w.) h solves the same homogeneous equation as w,
+  /// so h'' changes sign at most once on an interval shorter than half a
+  /// period, and at most once in all when the mode does not oscillate.
+  struct Shape {
+    double l0 = 0, l1 = 0, p = 0, q = 0;
+    double l0_size = 0, l1_size = 0;  ///< sums of the magnitudes that make up l0 and l1
+    double linear(double tau) const { return l0 + l1 * tau; }
+    double value(const Wave& x, double tau) const { return linear(tau) + p * x.w + q * x.w1; }
+    double slope(const Wave& x) const { return l1 + p * x.w1 + q * x.w2; }
+    double curvature(const Wave& x) const { return p * x.w2 + q * x.w3; }
+    /// sup |h| from here on: h'² + κ·h² never grows (its rate is −2δ·h'²).
+    double bound(const Wave& x, double kappa) const {
+      const double h = p * x.w + q * x.w1, h1 = p * x.w1 + q * x.w2;
+      return std::sqrt(h * h + h1 * h1 / kappa);
+    }
+    /// sup |g''| = sup |h''| from here on, by the same argument (h'' solves
+    /// the same equation).
+    double curvature_bound(const Wave& x, double kappa) const {
+      const double h2 = p * x.w2 + q * x.w3, h3 = p * x.w3 + q * x.w4;
+      return std::sqrt(h2 * h2 + h3 * h3 / kappa);
+    }
+  };
+
+  double kappa() const { return oscillator_.kappa(); }
+
+  /// The closed form at τ; the last one is kept, since the event locator asks
+  /// for the state at each interval end right after advance() computed it.
+  const ForcedOscillator::Values& values(double tau) const {
+    if (tau != cached_tau_) {
+      oscillator_.evaluate(tau, cached_);
+      cached_tau_ = tau;
+    }
+    return cached_;
+  }
+
+  Wave wave(double tau) const {
+    Wave x;
+    const ForcedOscillator::Values& v = values(tau);
+    x.w = v.w;
+    x.w1 = v.v;
+    const double kappa = oscillator_.kappa(), delta = oscillator_.delta();
+    x.w2 = -delta * x.w1 - kappa * x.w;
+    x.w3 = -delta * x.w2 - kappa * x.w1;
+    x.w4 = -delta * x.w3 - kappa * x.w2;
+    return x;
+  }
+
+  /// A guard's LinearForm written in the closed form of state_at.
+  Shape shape(const LinearForm& f) const {
+    const double j = (-f.omega_p * d_.inv_p + f.omega_s * d_.inv_s * d_.gain_s) / weight_;
+    const double v0 = s0_.omega_p - s0_.omega_s;
+    Shape g;
+    const double rest = oscillator_.equilibrium();
+    g.l0 = f.omega_p * s0_.omega_p + f.omega_s * s0_.omega_s + f.constant +
+           f.dphi * (d_.offset + rest) + j * v0;
+    g.l1 = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s + j * force_;
+    g.p = f.dphi;
+    g.q = -j;
+    // The sizes of the terms that cancel in l0 and l1: their rounding.
+    g.l0_size = std::abs(f.omega_p * s0_.omega_p) + std::abs(f.omega_s * s0_.omega_s) +
+                std::abs(f.constant) + std::abs(f.dphi * d_.offset) + std::abs(f.dphi * rest) +
+                std::abs(j * v0);
+    g.l1_size = std::abs(f.omega_p * d_.inv_p * d_.force_p) +
+                std::abs(f.omega_s * d_.inv_s * d_.force_s) + std::abs(j * force_);
+    return g;
+  }
+
+  /// Within this of zero a guard counts as possibly reaching it: the closed
+  /// form above and the form evaluated on state_at differ by rounding.
+  static double slack(const Shape& g, double tau, const Wave& x) {
+    return 1e-12 * (g.l0_size + g.l1_size * tau + std::abs(g.p * x.w) + std::abs(g.q * x.w1));
+  }
+
+  /// The first interior local minimum of g in (ta, tb), τ from the segment
+  /// start: split where g'' changes sign (at most once here); on each piece
+  /// g' is monotone and a minimum is where it turns from < 0 to >= 0.
+  std::optional<double> first_minimum(const Shape& g, double ta, double tb, const Wave& wa,
+                                      const Wave& wb) const {
+    auto slope_at = [&](double tau) { return g.slope(wave(tau)); };
+    auto curvature_at = [&](double tau) { return g.curvature(wave(tau)); };
+    struct Piece {
+      double lo, hi, slope_lo, slope_hi;
+    };
+    Piece pieces[2];
+    int count = 0;
+    const double ca = g.curvature(wa), cb = g.curvature(wb);
+    if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
+      const double m = root(curvature_at, ta, tb, ca, cb);
+      const double sm = slope_at(m);
+      pieces[count++] = {ta, m, g.slope(wa), sm};
+      pieces[count++] = {m, tb, sm, g.slope(wb)};
+    } else {
+      pieces[count++] = {ta, tb, g.slope(wa), g.slope(wb)};
+    }
+    // A slope within rounding of zero counts as zero. Rounding here is mostly
+    // that of the twist: Δφ carries the contact twist u = Δφ − offset only to
+    // ulp(ε), which makes κ·u and so g' uncertain by about q·κ·ulp(ε).
+    const double rest = oscillator_.equilibrium();
+    const double noise =
+        8 * std::numeric_limits<double>::epsilon() *
+        (std::abs(g.l1) +
+         std::abs(g.p) * (std::abs(wa.w1) + std::abs(s0_.omega_p) + std::abs(s0_.omega_s)) +
+         std::abs(g.q) * (oscillator_.delta() * std::abs(wa.w1) +
+                          kappa() * (std::abs(wa.w) + std::abs(d_.offset) + std::abs(rest))));
+    for (int i = 0; i < count; ++i) {
+      const Piece& piece = pieces[i];
+      if (!(piece.slope_lo < -noise && piece.slope_hi >= 0)) continue;
+      if (piece.slope_hi == 0) return piece.hi;
+      const double r = root(slope_at, piece.lo, piece.hi, piece.slope_lo, piece.slope_hi);
+      if (r > ta) return r;
+    }
+    return std::nullopt;
+  }
+
+  /// A root of f between lo and hi, where f changes sign: the end of the
+  /// final bracket on the side of hi.
+  template <class F>
+  static double root(F f, double lo, double hi, double flo, double fhi) {
+    std::uintmax_t iterations = 100;
+    boost::math::tools::eps_tolerance<double> tolerance(std::numeric_limits<double>::digits - 3);
+    return boost::math::tools::toms748_solve(f, lo, hi, flo, fhi, tolerance, iterations).second;
+  }
+
   ModeDynamics d_;
   GearState s0_;
   double t0_, horizon_, weight_, force_;
   ForcedOscillator oscillator_;
-  double step_ = 0, max_step_ = 0;
+  double step_ = 0;
   double end_;
   double vertex_ = -1;
+  std::vector<Shape> shapes_;
+  Wave wave_;  ///< at end_
+  mutable double cached_tau_ = std::numeric_limits<double>::quiet_NaN();
+  mutable ForcedOscillator::Values cached_;
 };
 
 class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
                                  double t0, double horizon) override {
-    return std::make_unique<ExactSegment>(model.dynamics(mode), state, t0, horizon);
+    return std::make_unique<ExactSegment>(model.dynamics(mode), model.guards(mode), state, t0,
+                                          horizon);
   }
 };
 

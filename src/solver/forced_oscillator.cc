@@ -18,31 +18,40 @@ ForcedOscillator::ForcedOscillator(double kappa, double delta, double force, dou
 namespace {
 
 /// e^{at}·cos(√D·t) and e^{at}·sin(√D·t)/√D, continued to D <= 0 (cosh, sinh,
-/// and the critical limit 1, t) without loss of precision near D = 0.
-void modes(double a, double disc, double t, double& ec, double& es) {
+/// and the critical limit 1, t) without loss of precision near D = 0; with
+/// `ec_minus_1`, also e^{at}·cos(√D·t) − 1 without the cancellation near t = 0.
+void modes(double a, double disc, double t, double& ec, double& es, double* ec_minus_1 = nullptr) {
   const double z = -disc * t * t;
   if (std::abs(z) < 1e-3) {  // Taylor series of cos(√D t) and sin(√D t)/√D in z
-    double c = 1, s = 1, term_c = 1, term_s = 1;
+    double c = 1, s = 1, term_c = 1, term_s = 1, c_minus_1 = 0;
     for (int n = 1; n <= 6; ++n) {
       term_c *= z / ((2 * n - 1) * (2 * n));
       term_s *= z / ((2 * n) * (2 * n + 1));
       c += term_c;
       s += term_s;
+      c_minus_1 += term_c;
     }
     const double e = std::exp(a * t);
     ec = e * c;
     es = e * s * t;
+    if (ec_minus_1) *ec_minus_1 = e * c_minus_1 + std::expm1(a * t);
   } else if (disc > 0) {
     const double b = std::sqrt(disc);
     const double e = std::exp(a * t);
-    ec = e * std::cos(b * t);
+    const double cosine = std::cos(b * t);
+    ec = e * cosine;
     es = e * std::sin(b * t) / b;
+    if (ec_minus_1) {
+      const double half = std::sin(0.5 * b * t);
+      *ec_minus_1 = std::expm1(a * t) * cosine - 2 * half * half;
+    }
   } else {  // written so that nothing overflows: a + g < 0 when κ > 0
     const double g = std::sqrt(-disc);
     const double slow = std::exp((a + g) * t);
     const double fast_ratio = std::expm1(-2 * g * t);  // e^{−2gt} − 1
     ec = slow * (1 + 0.5 * fast_ratio);
     es = slow * (-fast_ratio) / (2 * g);
+    if (ec_minus_1) *ec_minus_1 = std::expm1((a + g) * t) + 0.5 * slow * fast_ratio;
   }
 }
 
@@ -59,6 +68,24 @@ void ForcedOscillator::at(double t, double& u, double& v) const {
   const double w0 = u0_ - rest_;
   u = rest_ + ec * w0 + es * (v0_ - decay_ * w0);
   v = ec * v0_ + es * (decay_ * v0_ - kappa_ * w0);
+}
+
+void ForcedOscillator::evaluate(double t, Values& x) const {
+  if (kappa_ == 0) {  // free flight: no free part to speak of
+    x.du = t * (v0_ + 0.5 * force_ * t);
+    x.dv = force_ * t;
+    x.w = u0_ + x.du;
+    x.v = v0_ + x.dv;
+    return;
+  }
+  double ec, es, ec_minus_1;
+  modes(decay_, disc_, t, ec, es, &ec_minus_1);
+  const double w0 = u0_ - rest_;
+  const double sine_u = es * (v0_ - decay_ * w0), sine_v = es * (decay_ * v0_ - kappa_ * w0);
+  x.w = ec * w0 + sine_u;
+  x.v = ec * v0_ + sine_v;
+  x.du = ec_minus_1 * w0 + sine_u;
+  x.dv = ec_minus_1 * v0_ + sine_v;
 }
 
 double ForcedOscillator::sampling_step() const {

@@ -12,6 +12,18 @@ class ForcedOscillator {
 
   /// u(t) and u'(t).
   void at(double t, double& u, double& v) const;
+  /// Everything at t at once: the free (homogeneous) part w = u − f/κ and
+  /// its rate w' = u', each without the cancellation of subtracting the
+  /// equilibrium from u; and the changes u(t) − u(0), u'(t) − u'(0), each
+  /// without the cancellation of subtracting the initial value (exact to
+  /// relative precision as t → 0).
+  struct Values {
+    double w = 0, v = 0, du = 0, dv = 0;
+  };
+  void evaluate(double t, Values& x) const;
+  double equilibrium() const { return rest_; }  ///< f/κ (0 in free flight)
+  double kappa() const { return kappa_; }
+  double delta() const { return delta_; }
 
   /// A time step that samples every root of a + b·t + u-like terms: 1/16 of a
   /// period when oscillating, a quarter of the fastest decay time otherwise; 0
@@ -22,6 +34,7 @@ class ForcedOscillator {
   /// The time of u's extremum in free flight (negative if none ahead).
   double vertex() const;
   bool oscillating() const { return kappa_ > 0; }
+  bool underdamped() const { return kappa_ > 0 && disc_ > 0; }
 
  private:
   double kappa_, delta_, force_, u0_, v0_;
