@@ -148,10 +148,14 @@ Shaft GearModel::resolve_secondary(const Mode& m, const GearState& s) const {
 }
 
 /// After the contact changed: the self-locking reset (the secondary cannot
-/// move against the engagement, so k_Re → ∞ stops it at once), the torque
-/// sign, and shafts at rest re-examined against their new friction levels.
+/// move against the engagement, so k_Re → ∞ stops it at once; a secondary
+/// at zero speed that was sliding that way is held too, or the torque could
+/// start it against the lock), the torque sign, and shafts at rest
+/// re-examined against their new friction levels.
 void GearModel::settle(Mode& m, GearState& s) const {
-  if (p_.self_locking && s.omega_s * engagement(m) < 0) {
+  const int engaged = engagement(m);
+  if (p_.self_locking &&
+      (s.omega_s * engaged < 0 || (s.omega_s == 0 && direction(m.secondary) * engaged < 0))) {
     s.omega_s = 0;
     m.secondary = Shaft::held;
   }
