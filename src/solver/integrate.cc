@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
+#include <numbers>
 
 #include "common/error.h"
 #include "scene/scene.h"
@@ -32,39 +34,210 @@ class OutputGrid {
   long last_, next_ = 0;
 };
 
+/// Keeps the event count bounded. A run stops with an Error when it passes
+/// spec.max_events, or earlier when the recent event rate, carried on to the
+/// end of the run, would need more than twice that many: a stiff undamped
+/// contact rattling at its own frequency, or a mode switch that repeats ever
+/// faster (Zeno-like chattering), is refused in a fraction of a second
+/// instead of after millions of events.
+class EventBudget {
+ public:
+  explicit EventBudget(const RunSpec& spec)
+      : spec_(spec), window_(std::max<std::size_t>(1024, spec.max_events / 64)) {}
+
+  void count(const EventRecord& e, const GearModel& model) {
+    ++events_;
+    ++kinds_[e.kind];
+    const bool contact_change = e.mode_after.contact != e.mode_before.contact;
+    // The lock catching the secondary: it ends held as the flanks change.
+    const bool lock_stop = model.parameters().self_locking && contact_change &&
+                           e.mode_after.secondary == Shaft::held && e.after.omega_s == 0;
+    lock_stops_ += lock_stop;
+    if (e.t > last_time_ || events_ == 1) {
+      stalled_ = 0;
+      stalled_kinds_.clear();
+      stalled_locks_ = 0;
+    } else {  // no time passed since the last event
+      ++stalled_;
+      ++stalled_kinds_[e.kind];
+      stalled_locks_ += lock_stop;
+      if (stalled_ > 64) stuck(e);
+    }
+    last_time_ = e.t;
+    if (events_ > spec_.max_events) refuse(e.t);
+    if (events_ - window_events_ < window_) return;
+    if (projected(e.t) > 2.0 * spec_.max_events) refuse(e.t);
+    window_events_ = events_;
+    window_time_ = e.t;
+    kinds_.clear();
+    lock_stops_ = 0;
+  }
+
+ private:
+  /// The events the run needs if the rate since the window start goes on.
+  double projected(double t) const {
+    const double span = t - window_time_;
+    const double rate = span > 0 ? (events_ - window_events_) / span : INFINITY;
+    return events_ + rate * (spec_.duration - t);
+  }
+
+  /// "release 50 %, contact+ 50 %": the share of each kind among `total`.
+  static std::string shares(const std::map<GuardKind, std::size_t>& kinds, std::size_t total) {
+    std::string text;
+    for (const auto& [kind, n] : kinds)
+      if (200 * n >= total)
+        text += fmt::format("{}{} {:.0f} %", text.empty() ? "" : ", ", to_string(kind),
+                            100.0 * n / total);
+    return text;
+  }
+
+  static constexpr const char* lock_advice =
+      "a self-locked secondary pressed against a receding flank follows it in ever shorter "
+      "falls, each stopped by the lock: the ideal lock (k_Re → ∞) has no mode in which the "
+      "secondary slides along with the primary; keep the flanks pressed (a drive or primary "
+      "bearing friction that holds the primary), or end the run before this time (run.duration)";
+
+  [[noreturn]] void stuck(const EventRecord& e) const {
+    throw Error(fmt::format(
+        "the model is stuck at t = {} s: {} events without time passing ({}), now in mode {}: {}",
+        e.t, stalled_, shares(stalled_kinds_, stalled_), to_string(e.mode_after),
+        4 * stalled_locks_ >= stalled_
+            ? lock_advice
+            : "the state sits on a switching boundary that rounding cannot settle (a contact "
+              "grazed at zero relative speed, or a torque exactly at a friction level); change "
+              "the initial state or the friction levels slightly, or end the run before this "
+              "time (run.duration)"));
+  }
+
+  [[noreturn]] void refuse(double t) const {
+    const std::size_t recent = events_ - window_events_;
+    const double span = t - window_time_, needed = projected(t);
+    const std::string kinds = shares(kinds_, recent);
+    std::string advice =
+        4 * lock_stops_ >= recent
+            ? lock_advice
+            : "shorten the run (run.duration), or make the events rarer: contact damping "
+              "(restitution < 1), a softer coupling (stiffness) or more backlash";
+    throw Error(fmt::format(
+        "too many events: {} by t = {:.9g} s of the {:g} s run, {} per second of model time "
+        "lately ({}); at that rate the run needs {} events, more than the limit of {}: {}",
+        events_, t, spec_.duration,
+        span > 0 ? fmt::format("{:.3g}", recent / span) : std::string("infinitely many"), kinds,
+        std::isfinite(needed) ? fmt::format("about {:.3g}", needed)
+                                               : std::string("unboundedly many"),
+        spec_.max_events, advice));
+  }
+
+  const RunSpec& spec_;
+  std::size_t window_;
+  std::size_t events_ = 0, window_events_ = 0, lock_stops_ = 0;
+  double window_time_ = 0;
+  std::map<GuardKind, std::size_t> kinds_;
+  double last_time_ = 0;
+  std::size_t stalled_ = 0, stalled_locks_ = 0;
+  std::map<GuardKind, std::size_t> stalled_kinds_;
+};
+
+/// Keeps the number of solver steps (the intervals each mode is walked in)
+/// bounded the same way: a contact that keeps a guard within rounding of zero
+/// cannot be skipped and costs 16 steps per period for the rest of the run.
+class StepBudget {
+ public:
+  explicit StepBudget(const RunSpec& spec)
+      : spec_(spec), window_(std::max<std::size_t>(4096, spec.max_steps / 64)) {}
+
+  void count(double t, const GearModel& model, const Mode& mode) {
+    if (++steps_ - window_steps_ < window_ && steps_ <= spec_.max_steps) return;
+    const double span = t - window_time_;
+    const double rate = span > 0 ? (steps_ - window_steps_) / span : INFINITY;
+    const double needed = steps_ + rate * (spec_.duration - t);
+    if (steps_ > spec_.max_steps || needed > 2.0 * spec_.max_steps) {
+      const ModeDynamics d = model.dynamics(mode);
+      const double weight = d.inv_p + d.inv_s * d.gain_s;
+      throw Error(fmt::format(
+          "too many solver steps: {} by t = {:.9g} s of the {:g} s run, in mode {} lately; at that "
+          "rate the run needs {} steps, more than the limit of {}: {}shorten the run "
+          "(run.duration), or make the contact oscillation slower (gear.stiffness) or damped "
+          "(restitution < 1)",
+          steps_, t, spec_.duration, to_string(mode),
+          std::isfinite(needed) ? fmt::format("about {:.3g}", needed)
+                                                 : std::string("unboundedly many"),
+          spec_.max_steps,
+          d.coupled ? fmt::format("the contact oscillation (period {:.3g} s) is sampled 16 times "
+                                  "a period while a guard stays within reach of zero; ",
+                                  2 * std::numbers::pi / std::sqrt(weight * d.stiffness))
+                    : std::string()));
+    }
+    window_steps_ = steps_;
+    window_time_ = t;
+  }
+
+ private:
+  const RunSpec& spec_;
+  std::size_t window_;
+  std::size_t steps_ = 0, window_steps_ = 0;
+  double window_time_ = 0;
+};
+
+/// The segment could not step on before the end of the run: the mode's
+/// fastest time scale is below the resolution of the time axis at t.
+[[noreturn]] void unresolvable(const GearModel& model, const Mode& mode, double t,
+                               const RunSpec& spec) {
+  const ModeDynamics d = model.dynamics(mode);
+  const double resolution = std::nextafter(t, INFINITY) - t;
+  if (!d.coupled)
+    throw Error(fmt::format("the solver cannot step past t = {:.9g} s of the {:g} s run in mode "
+                            "{}: its step fell below the resolution of the time axis there "
+                            "({:.3g} s); shorten run.duration",
+                            t, spec.duration, to_string(mode), resolution));
+  const double weight = d.inv_p + d.inv_s * d.gain_s;
+  const double period = 2 * std::numbers::pi / std::sqrt(weight * d.stiffness);
+  const double decay = d.damping > 0 ? 2 / (weight * d.damping) : INFINITY;
+  throw Error(fmt::format(
+      "the solver cannot step past t = {:.9g} s of the {:g} s run in mode {}: the contact "
+      "oscillates with a period of {:.3g} s{}, too short to sample (1/16 of a period per step) "
+      "on the time axis there, whose resolution is {:.3g} s; lower gear.stiffness{}, or shorten "
+      "run.duration so that the period stays above about 1e-13 of the run",
+      t, spec.duration, to_string(mode), period,
+      std::isfinite(decay) && decay < period ? fmt::format(" and decays in {:.3g} s", decay) : "",
+      resolution, d.damping > 0 ? " or the damping" : ""));
+}
+
 }  // namespace
 
 void integrate(const GearModel& model, Stepper& stepper, GearState state, const RunSpec& spec,
                Observer& observer) {
+  constexpr double most_rows = 1e8;
+  if (!(spec.output_step > 0) || !(spec.duration / spec.output_step <= most_rows))
+    throw Error(fmt::format("an output step of {:g} s gives {:.3g} rows over the {:g} s run, more "
+                            "than the {:g} a run may write: raise run.output_step (or --dt)",
+                            spec.output_step, spec.duration / spec.output_step, spec.duration,
+                            most_rows));
   OutputGrid grid(spec);
   Mode mode = model.initial_mode(state);
   double t = 0;
-  std::size_t events = 0, stalled = 0;
+  EventBudget budget(spec);
+  StepBudget steps(spec);
   while (t < spec.duration) {
     auto segment = stepper.start(model, mode, state, t, spec.duration);
     const Crossing crossing = locate_first_crossing(
         *segment, model.guards(mode), t, [&](double, double b) {
+          steps.count(b, model, mode);
           grid.emit_through(b, mode, [&](double s) { return segment->state_at(s); }, observer);
         });
     GearState before = segment->state_at(crossing.time);
     if (!crossing.kind) {
+      if (crossing.time < spec.duration) unresolvable(model, mode, crossing.time, spec);
       state = before;
       break;
     }
-    stalled = crossing.time > t ? 0 : stalled + 1;
-    if (stalled > 64)
-      throw Error(fmt::format("the model is stuck at t = {} s: {} events without time passing "
-                              "in mode {} (a grazing contact the solver cannot resolve)",
-                              t, stalled, to_string(mode)));
-    if (++events > spec.max_events)
-      throw Error(fmt::format("more than {} events by t = {} s: the event count grows without "
-                              "bound; shorten the run or check restitution and backlash",
-                              spec.max_events, crossing.time));
     t = crossing.time;
     state = before;
     const Mode previous = mode;
     mode = model.cross(mode, *crossing.kind, state);
-    observer.event({t, *crossing.kind, before, state, previous, mode});
+    const EventRecord record{t, *crossing.kind, before, state, previous, mode};
+    budget.count(record, model);
+    observer.event(record);
   }
   grid.emit_through(spec.duration, mode, [&](double) { return state; }, observer);
 }

@@ -10,12 +10,13 @@ namespace gearpatch {
 
 struct Scene;
 
-/// What the run is asked for: length, output grid, and the bound on events
-/// that stops a run whose event count would grow without bound.
+/// What the run is asked for: length, output grid, and the bounds on events
+/// and on solver steps that stop a run whose cost would grow without bound.
 struct RunSpec {
   double duration = 1;
   double output_step = 1e-3;
   std::size_t max_events = 5'000'000;
+  std::size_t max_steps = 100'000'000;  ///< intervals the segments are walked in
 
   /// The scene's duration and output step (default: 2000 intervals).
   static RunSpec from_scene(const Scene& scene);
