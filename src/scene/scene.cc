@@ -124,6 +124,8 @@ std::map<std::string, std::string> read_values(const std::string& text, Scene& s
   return values;
 }
 
+constexpr double largest_magnitude = 1e30, smallest_magnitude = 1e-30;
+
 /// Typed access to the raw strings with the checks every key shares.
 class Reader {
  public:
@@ -145,6 +147,18 @@ class Reader {
     if (!has(key)) return std::nullopt;
     auto value = parse_finite(values_.at(key));
     if (!value) fail(key, "not a finite number");
+    // Physical values in SI units are kept within 1e-30 … 1e30 in magnitude:
+    // the solver forms products and quotients of several of them (c/Θ,
+    // (c/Θ)²·Δφ, d·Δφ̇ …), which must neither overflow nor underflow.
+    // Dimensionless k and η_z have their own ranges; the machine is not simulated.
+    const bool physical = key.rfind("machine.", 0) != 0 && key != "gear.restitution" &&
+                          key != "friction.mesh_efficiency";
+    if (physical && std::abs(*value) > largest_magnitude)
+      fail(key, "larger in magnitude than 1e30, the most the reference model computes with "
+                "(SI units); rescale the scene");
+    if (physical && *value != 0 && std::abs(*value) < smallest_magnitude)
+      fail(key, "smaller in magnitude than 1e-30, the least the reference model computes with "
+                "(SI units); write 0 for none where 0 is allowed, or rescale the scene");
     return value;
   }
 
