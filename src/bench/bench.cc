@@ -186,14 +186,6 @@ std::vector<Knob> standard_knobs() {
     same->presets.push_back(preset.name);
   }
   knobs.push_back({"level", "hardware level", circuit::Level::hardware, d, {}});
-  // The settings a deck gets when nobody picks a preset (netlist, the library),
-  // if they are not the verify default.
-  const circuit::TransientControl deck_default;
-  const bool measured = std::any_of(knobs.begin(), knobs.end(), [&](const Knob& k) {
-    return k.level == circuit::Level::ideal && same_control(k.control, deck_default);
-  });
-  if (!measured)
-    knobs.push_back({"deck-default", "TransientControl default", circuit::Level::ideal, deck_default, {}});
   return knobs;
 }
 

@@ -19,8 +19,7 @@ struct Scene;
 namespace gearpatch::bench {
 
 /// One ngspice configuration the bench runs on every scene: a knob family
-/// ("default", "max-step", "reltol", "method", "grid", "level", "preset",
-/// "deck-default"), a
+/// ("default", "max-step", "reltol", "method", "grid", "level", "preset"), a
 /// label, the netlist level and the transient settings. `presets` names the
 /// quality presets with exactly these settings (at the ideal level).
 struct Knob {
@@ -35,8 +34,8 @@ struct Knob {
 /// one knob at a time around them (max step T/500, 2000, 4000, 16000; reltol
 /// 1e-3, 1e-5, 1e-7, 1e-9; method trap or gear; output grid 500, 2000, 8000
 /// points — each without the default's own value), the quality presets not
-/// already among those, the hardware level at the default, and
-/// TransientControl's defaults (family "deck-default") if they differ.
+/// already among those, and the hardware level at the default. (A deck's
+/// default settings are the `normal` preset, so they need no knob of their own.)
 std::vector<Knob> standard_knobs();
 
 /// The knobs of the named families only ("default" is always kept).

@@ -354,11 +354,6 @@ std::vector<Series> panel_series(const BenchResult& r, const std::vector<Row>& r
     }
   out.push_back(presets);
   out.push_back(names);
-  Series deck{"TransientControl default", "with points pt 8 ps 1.6 lw 2 lc rgb 'black'", {}};
-  for (const Row& x : rows)
-    if (x.knob >= 0 && finite(x) && r.knobs[x.knob].family == "deck-default")
-      deck.points.push_back({x.seconds, clamp_error(x.error), ""});
-  out.push_back(deck);
   return out;
 }
 
@@ -434,8 +429,7 @@ void write_plot(const BenchResult& r, const std::string& path) {
             "NaN with linespoints pt 11 lc rgb '#9467bd' title 'ngspice method trap, gear', "
             "NaN with linespoints pt 13 lc rgb '#8c564b' title 'ngspice output grid 500 ... 8000 points', "
             "NaN with linespoints pt 3 ps 1.5 lc rgb '#7f7f7f' title 'netlist level ideal, hardware', "
-            "NaN with points pt 2 ps 2 lw 2 lc rgb '#d62728' title 'quality presets (named; normal = verify default)', "
-            "NaN with points pt 8 ps 1.6 lw 2 lc rgb 'black' title 'TransientControl default (netlist command)'\n"
+            "NaN with points pt 2 ps 2 lw 2 lc rgb '#d62728' title 'quality presets (named; normal = verify and netlist default)'\n"
             "set border\nset tics\nset grid\nset logscale xy\nset autoscale xy\n"
             "set xlabel 'time per run [s] (ngspice: CPU)'\nset ylabel 'error [fraction of full scale]'\n";
   script += "unset key\n";

@@ -52,7 +52,7 @@ std::string presets_text() {
 
 int run_bench(const std::vector<std::string>& args) {
   const std::vector<std::string> families = {"reference", "max-step", "reltol", "method", "grid",
-                                             "preset",    "level",    "deck-default"};
+                                             "preset",    "level"};
   po::options_description options("bench options");
   options.add_options()
       ("json", po::value<std::string>(), "write every number, with the machine it ran on, as JSON to FILE")
@@ -60,7 +60,7 @@ int run_bench(const std::vector<std::string>& args) {
        "Pareto front marked) to FILE (.png or .svg, gnuplot)")
       ("markdown", po::value<std::string>(), "write the README section (tables, machine, command) to FILE")
       ("only", po::value<std::string>(), "measure only these comma-separated families: reference (exact and "
-       "adaptive solvers), max-step, reltol, method, grid, preset, level, deck-default (verify's default "
+       "adaptive solvers), max-step, reltol, method, grid, preset, level (verify's default "
        "settings always run)")
       ("min-time", po::value<double>()->default_value(0.2), "reference solvers: each timing repetition "
        "runs the solver until this many seconds have passed")
@@ -78,9 +78,8 @@ int run_bench(const std::vector<std::string>& args) {
           "  ngspice            verify's default (--quality normal), then one knob at a time:\n"
           "                     max step T/500, 2000, 4000, 16000; reltol 1e-3, 1e-5, 1e-7,\n"
           "                     1e-9; method trap, gear; output grid 500, 2000, 8000 points;\n"
-          "                     the other quality presets; the hardware level; the netlist\n"
-          "                     command's default settings (ngspice CPU time, median of\n"
-          "                     --ngspice-repeat runs)\n"
+          "                     the other quality presets; the hardware level (ngspice CPU\n"
+          "                     time, median of --ngspice-repeat runs)\n"
           "Error: fraction of full scale (ngspice: verify's worst signal error or impact shift;\n"
           "adaptive: |adaptive - exact| on the scene's grid). Prints a table per scene, the\n"
           "knobs over all scenes with their Pareto front, the presets, and exact against\n"
@@ -96,7 +95,7 @@ int run_bench(const std::vector<std::string>& args) {
     for (const std::string& f : chosen)
       if (std::find(families.begin(), families.end(), f) == families.end())
         throw Error(fmt::format("--only {}: not a family (reference, max-step, reltol, method, grid, preset, "
-                                "level, deck-default)", f));
+                                "level)", f));
     o.reference = std::find(chosen.begin(), chosen.end(), "reference") != chosen.end();
     o.knobs = bench::select_knobs(o.knobs, chosen);
   }

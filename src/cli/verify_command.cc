@@ -37,8 +37,7 @@ int run_verify(const std::vector<std::string>& args) {
                        "pass, 1: fail, 2: bad input, 3: ngspice failed (the deck is kept).",
                        options, vm))
     return 0;
-  const auto scenes = vm["scene"].as<std::vector<std::string>>();
-  if (scenes.size() != 1) throw Error("verify takes one SCENE");
+  const std::string file = single_file(vm, "verify");
   verify::VerifyOptions o;
   o.level = circuit::parse_level(vm["level"].as<std::string>());
   if (vm.count("tolerance")) {
@@ -52,7 +51,7 @@ int run_verify(const std::vector<std::string>& args) {
   if (!(timeout > 0)) throw Error("--timeout must be > 0");
   o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
   if (vm.count("keep-deck")) o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
-  const Scene scene = load_scene(scenes.front());
+  const Scene scene = load_scene(file);
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   auto simulator = spice::make_batch_ngspice();
