@@ -2,16 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "bench/quality.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/gnuplot.h"
 #include "common/numbers.h"
 
 namespace gearpatch::bench {
@@ -379,9 +377,6 @@ std::string render_panel(const std::string& id, const std::string& title, const 
 }  // namespace
 
 void write_plot(const BenchResult& r, const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string ext = fs::path(path).extension().string();
-  if (ext != ".png" && ext != ".svg") throw Error("--plot " + path + ": give a .png or .svg file");
   // The all-scenes panel: worst error and total time of each ngspice knob.
   std::vector<Row> all, middle;
   for (const AggregatePoint& a : r.aggregate) {
@@ -409,14 +404,11 @@ void write_plot(const BenchResult& r, const std::string& path) {
 
   const int columns = panels.size() > 1 ? 2 : 1;
   const int rows = static_cast<int>((panels.size() + 1 + columns - 1) / columns);  // +1: the key's cell
-  const fs::path target(path);
-  const std::string partial = (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
   std::string script = fmt::format(
-      "set terminal {} size {},{} font ',10'\nset output '{}'\n"
       "set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset grid\n"
       "set xlabel 'time per run [s] (ngspice: CPU)'\nset ylabel 'error [fraction of full scale]'\n"
       "set multiplot layout {},{} title 'gearpatch bench: work-precision (log-log), {} cores {}, {}'\n",
-      ext == ".png" ? "pngcairo" : "svg", 600 * columns, 450 * rows, partial, rows, columns, r.machine.nproc,
+      rows, columns, r.machine.nproc,
       r.machine.cpu_model, r.machine.date);
   // First panel: the key alone (every series, with NaN data), then the panels.
   script += "set key inside center center font ',10'\nunset title\nunset border\nunset tics\nunset grid\n"
@@ -436,20 +428,7 @@ void write_plot(const BenchResult& r, const std::string& path) {
   for (const std::string& panel : panels) script += panel;
   script += "unset multiplot\n";
 
-  const fs::path dir = fs::temp_directory_path() / fmt::format("gearpatch-bench-plot-{}", ::getpid());
-  fs::create_directories(dir);
-  write_file_atomically((dir / "plot.gp").string(), script);
-  const std::string command =
-      fmt::format("gnuplot '{}' 2>'{}'", (dir / "plot.gp").string(), (dir / "gnuplot.log").string());
-  const int status = std::system(command.c_str());
-  if (status != 0 || !fs::exists(partial)) {
-    fs::remove(partial);
-    const std::string log = fs::exists(dir / "gnuplot.log") ? read_file((dir / "gnuplot.log").string()) : "";
-    fs::remove_all(dir);
-    throw Error("--plot: gnuplot failed (is it installed? apt-get install gnuplot-nox): " + log);
-  }
-  fs::rename(partial, path);
-  fs::remove_all(dir);
+  draw_with_gnuplot(path, 600 * columns, 450 * rows, script);
 }
 
 }  // namespace gearpatch::bench

@@ -10,6 +10,7 @@
 #include "cli/options.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/gnuplot.h"
 
 namespace gearpatch::cli {
 namespace {
@@ -107,6 +108,7 @@ int run_bench(const std::vector<std::string>& args) {
   const double timeout = vm["timeout"].as<double>();
   if (!(timeout > 0)) throw Error("--timeout must be > 0");
   o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
+  if (vm.count("plot")) check_plot_path(vm["plot"].as<std::string>());
   o.command = "gearpatch bench";
   for (const std::string& a : args) o.command += " " + a;
   o.progress = [](const std::string& line) { std::fprintf(stderr, "gearpatch bench: %s\n", line.c_str()); };

@@ -6,6 +6,7 @@
 #include "cli/options.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/gnuplot.h"
 #include "scene/scene.h"
 #include "verify/report.h"
 #include "verify/verify.h"
@@ -50,6 +51,7 @@ int run_verify(const std::vector<std::string>& args) {
   const double timeout = vm["timeout"].as<double>();
   if (!(timeout > 0)) throw Error("--timeout must be > 0");
   o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
+  if (vm.count("plot")) check_plot_path(vm["plot"].as<std::string>());
   if (vm.count("keep-deck")) o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
   const Scene scene = load_scene(file);
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),

@@ -1,13 +1,12 @@
 #include "verify/report.h"
 
 #include <cstdio>
-#include <filesystem>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-#include <unistd.h>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/gnuplot.h"
 
 namespace gearpatch::verify {
 namespace {
@@ -81,48 +80,24 @@ std::string to_json(const VerifyResult& r) {
 }
 
 void write_plot(const VerifyResult& r, const std::string& path) {
-  namespace fs = std::filesystem;
-  const std::string ext = fs::path(path).extension().string();
-  if (ext != ".png" && ext != ".svg") throw Error("--plot " + path + ": give a .png or .svg file");
-  const fs::path dir = fs::temp_directory_path() / fmt::format("gearpatch-plot-{}", ::getpid());
-  fs::create_directories(dir);
-  std::string ref = "# t omega_p omega_s dphi m0\n", circ = ref;
+  std::string script = "$reference << EOD\n";
   for (const auto& s : r.reference.samples)
-    ref += fmt::format("{} {} {} {} {}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0);
+    script += fmt::format("{} {} {} {} {}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0);
+  script += "EOD\n$circuit << EOD\n";
   const auto& c = r.circuit;
   for (std::size_t i = 0; i < c.t.size(); ++i)
-    circ += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at("omega_p")[i], c.signals.at("omega_s")[i],
-                        c.signals.at("dphi")[i], c.signals.at("m0")[i]);
-  write_file_atomically((dir / "reference.dat").string(), ref);
-  write_file_atomically((dir / "circuit.dat").string(), circ);
-  // Rendered next to the target and renamed, so a failed run leaves no half-written plot.
-  const fs::path target(path);
-  const std::string partial =
-      (target.parent_path() / ("." + target.filename().string() + ".partial")).string();
-  std::string script = fmt::format(
-      "set terminal {} size 1000,900 font ',10'\nset output '{}'\n"
-      "set multiplot layout 4,1 title 'gearpatch verify {} ({}): {}'\nset grid\nset key right top\n",
-      ext == ".png" ? "pngcairo" : "svg", partial, r.scene, level_name(r.level), r.passed ? "PASS" : "FAIL");
+    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at("omega_p")[i], c.signals.at("omega_s")[i],
+                          c.signals.at("dphi")[i], c.signals.at("m0")[i]);
+  script += fmt::format("EOD\nset multiplot layout 4,1 title 'gearpatch verify {} ({}): {}'\nset grid\n"
+                        "set key right top\n",
+                        r.scene, level_name(r.level), r.passed ? "PASS" : "FAIL");
   const char* labels[] = {"phi_p' [rad/s]", "phi_s' [rad/s]", "dphi [rad]", "M0 [N m]"};
   for (int k = 0; k < 4; ++k)
     script += fmt::format(
-        "set ylabel \"{}\"\n{}plot '{}' using 1:{} with lines lw 2 lc rgb '#1f77b4' title 'reference', "
-        "'{}' using 1:{} with lines dt 2 lw 1.5 lc rgb '#d62728' title 'circuit'\n",
-        labels[k], k == 3 ? "set xlabel 't [s]'\n" : "", (dir / "reference.dat").string(), k + 2,
-        (dir / "circuit.dat").string(), k + 2);
-  script += "unset multiplot\n";
-  write_file_atomically((dir / "plot.gp").string(), script);
-  const std::string command = fmt::format("gnuplot '{}' 2>'{}'", (dir / "plot.gp").string(),
-                                          (dir / "gnuplot.log").string());
-  const int status = std::system(command.c_str());
-  if (status != 0 || !fs::exists(partial)) {
-    fs::remove(partial);
-    const std::string log = fs::exists(dir / "gnuplot.log") ? read_file((dir / "gnuplot.log").string()) : "";
-    fs::remove_all(dir);
-    throw Error("--plot: gnuplot failed (is it installed? apt-get install gnuplot-nox): " + log);
-  }
-  fs::rename(partial, path);
-  fs::remove_all(dir);
+        "set ylabel \"{}\"\n{}plot $reference using 1:{} with lines lw 2 lc rgb '#1f77b4' title 'reference', "
+        "$circuit using 1:{} with lines dt 2 lw 1.5 lc rgb '#d62728' title 'circuit'\n",
+        labels[k], k == 3 ? "set xlabel 't [s]'\n" : "", k + 2, k + 2);
+  draw_with_gnuplot(path, 1000, 900, script + "unset multiplot\n");
 }
 
 }  // namespace gearpatch::verify
