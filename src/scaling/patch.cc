@@ -43,13 +43,20 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
     return fmt::format("the initial value exceeds its maximum: raise maxima.{}",
                        c.name == "alpha6" ? "speed_primary" : c.name == "alpha7" ? "speed_secondary"
                                                                                  : "twist");
-  if (c.name == "alpha11")
-    return fmt::format("the contact twist Δφ'm = {:.4g} rad is tiny against the play (Δφm = {:.4g} "
-                       "rad): {}, or use a machine with larger input weights", m.contact_twist, m.twist,
-                       largest_weight > 1
-                           ? fmt::format("give maxima.contact_twist >= ε/(n − 1) = {:.4g} rad (n = {})",
-                                         half_backlash / (largest_weight - 1), largest_weight)
-                           : std::string("give a larger maxima.contact_twist"));
+  if (c.name == "alpha11") {
+    // Raising Δφ'm fits the potentiometer but scales the contact torque up with
+    // it: β grows and the contact uses a sliver of its range (backlash-wide
+    // fails verify by 70 % that way), so that is not the first advice.
+    const int n = largest_weight;
+    return fmt::format(
+        "the contact twist Δφ'm = {:.4g} rad is tiny against the play (Δφm = {:.4g} rad), and the "
+        "dead zone's output can be amplified by at most the largest input weight n = {}: the half "
+        "backlash must be at most (n − 1)·Δφ'm = {:.4g} rad here. Give a smaller backlash or a softer "
+        "coupling (Δφ'm grows as 1/sqrt(c)); raising maxima.contact_twist{} fits the potentiometer "
+        "but scales the contact torque up with it and costs accuracy: check that with verify",
+        m.contact_twist, m.twist, n, (n - 1) * m.contact_twist,
+        n > 1 ? fmt::format(" to ε/(n − 1) = {:.4g} rad", half_backlash / (n - 1)) : std::string());
+  }
   if (c.name == "alpha8" || c.name == "alpha9")
     return "the speed maximum is large against Δφ̇m: raise maxima.relative_speed or lower "
            "maxima.speed_primary/speed_secondary";
