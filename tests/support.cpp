@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdio>
+#include <catch2/catch.hpp>
 #include <sys/wait.h>
 
 namespace gearpatch::testing {
@@ -15,6 +16,16 @@ int run_command(const std::string& command, std::string& output) {
   while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) output.append(buffer.data(), n);
   int status = pclose(pipe);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int check_never_against_engagement(const GearModel& model, const Trajectory& trajectory) {
+  int engaged = 0;
+  for (const Sample& s : trajectory.samples) {
+    const double twist = model.contact_twist(s.dphi);
+    CHECK(s.omega_s * twist >= 0.0);
+    engaged += twist != 0;
+  }
+  return engaged;
 }
 
 }  // namespace gearpatch::testing

@@ -4,7 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "model/gear_model.h"
 #include "scene/scene.h"
+#include "solver/trajectory.h"
 
 namespace gearpatch::testing {
 
@@ -28,6 +30,21 @@ inline std::string gear_scene(const std::string& gear, const std::string& rest =
   return "[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstiffness = 100\n" + gear +
          "\n" + rest + "\n[run]\nduration = " + std::to_string(duration) + "\n";
 }
+
+/// An RC step response (1 kΩ, 1 µF, 1 V, 5 ms): the smallest deck ngspice runs.
+inline constexpr const char* rc_step_deck =
+    "rc step response\n"
+    "V1 in 0 DC 1\n"
+    "R1 in out 1k\n"
+    "C1 out 0 1u\n"
+    ".ic v(out)=0\n"
+    ".tran 10u 5m 0 10u\n"
+    ".end\n";
+
+/// Checks self-locking's invariant at every sample, that the secondary never
+/// turns against the engagement (φ̇s·Δφ' >= 0); returns how many samples were
+/// in contact, so a caller can check the lock was put to the test.
+int check_never_against_engagement(const GearModel& model, const Trajectory& trajectory);
 
 /// Runs a shell command; returns its exit status and puts stdout+stderr in `output`.
 int run_command(const std::string& command, std::string& output);

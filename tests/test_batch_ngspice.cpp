@@ -23,6 +23,7 @@
 #include "common/error.h"
 #include "spice/batch_ngspice.h"
 #include "spice/scripted_simulator.h"
+#include "support.h"
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
@@ -31,14 +32,7 @@ using namespace gearpatch::spice;
 
 namespace {
 
-constexpr const char* kRcDeck =
-    "rc step response\n"
-    "V1 in 0 DC 1\n"
-    "R1 in out 1k\n"
-    "C1 out 0 1u\n"
-    ".ic v(out)=0\n"
-    ".tran 10u 5m 0 10u\n"
-    ".end\n";
+constexpr const char* kRcDeck = gearpatch::testing::rc_step_deck;
 
 // A sine into an RC with a 1 ns maximum step over 10 s: about 10 MB of
 // rawfile per second, for ever as far as a test is concerned.

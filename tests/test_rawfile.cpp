@@ -18,6 +18,7 @@
 
 #include "common/error.h"
 #include "spice/rawfile.h"
+#include "support.h"
 
 namespace fs = std::filesystem;
 using gearpatch::Error;
@@ -87,14 +88,7 @@ std::string slurp(const fs::path& path) {
   return s.str();
 }
 
-constexpr const char* kRcDeck =
-    "rc step response\n"
-    "V1 in 0 DC 1\n"
-    "R1 in out 1k\n"
-    "C1 out 0 1u\n"
-    ".ic v(out)=0\n"
-    ".tran 10u 5m 0 10u\n"
-    ".end\n";
+constexpr const char* kRcDeck = gearpatch::testing::rc_step_deck;
 
 /// Runs the real ngspice on the RC deck and returns the rawfile it wrote.
 std::string real_rc_rawfile(bool ascii) {
