@@ -45,8 +45,8 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
                                                                                  : "twist");
   if (c.name == "alpha11") {
     // Raising Δφ'm fits the potentiometer but scales the contact torque up with
-    // it: β grows and the contact uses a sliver of its range (backlash-wide
-    // fails verify by 70 % that way), so that is not the first advice.
+    // it, which forces a far larger β (backlash-wide: 10000) and fails verify
+    // by 70 %, so that is not the first advice.
     const int n = largest_weight;
     return fmt::format(
         "the contact twist Δφ'm = {:.4g} rad is tiny against the play (Δφm = {:.4g} rad), and the "
