@@ -1,7 +1,6 @@
 #include <cstdio>
 #include <fmt/format.h>
 
-#include "bench/quality.h"
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
 #include "cli/command.h"
@@ -22,10 +21,8 @@ int run_netlist(const std::vector<std::string>& args) {
        "potentiometers as loaded dividers, 1N4148 diodes, DG419-class switches")
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
        "(as settings --autoscale) instead of the paper's a-priori maxima")
-      ("quality", po::value<std::string>()->default_value(std::string(bench::default_quality())),
-       "ngspice accuracy preset written into the .options and .tran lines, as verify --quality "
-       "(see verify --help for each preset's measured error and time)")
       ("output,o", po::value<std::string>(), "deck file (default stdout)");
+  add_quality_option(options, "; written into the deck's .options and .tran lines");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [--quality Q] [-o FILE.cir]\n\n"
                        "Writes the analog computer program of the scene (the paper's Bild 4) as an\n"
@@ -40,7 +37,7 @@ int run_netlist(const std::vector<std::string>& args) {
   patch_options.check_peaks = patch_options.autoscale;
   patch_options.comparator_offset = circuit::comparator_offset(level);
   const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, patch_options), level);
-  const circuit::TransientControl control = bench::quality_preset(vm["quality"].as<std::string>()).control;
+  const circuit::TransientControl control = chosen_quality(vm);
   const std::string deck = circuit::render_netlist(c, level, scene.machine, control);
   if (!vm.count("output")) {
     std::fputs(deck.c_str(), stdout);

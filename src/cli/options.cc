@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "bench/quality.h"
 #include "common/error.h"
 
 namespace gearpatch::cli {
@@ -32,6 +33,15 @@ std::string single_file(const po::variables_map& vm, const std::string& command,
   const auto files = vm["scene"].as<std::vector<std::string>>();
   if (files.size() != 1) throw Error(command + " takes one " + what);
   return files.front();
+}
+
+void add_quality_option(po::options_description& options, const std::string& note) {
+  options.add_options()("quality", po::value<std::string>()->default_value(std::string(bench::default_quality())),
+                        (bench::quality_help() + note).c_str());
+}
+
+circuit::TransientControl chosen_quality(const po::variables_map& vm) {
+  return bench::quality_preset(vm["quality"].as<std::string>()).control;
 }
 
 }  // namespace gearpatch::cli

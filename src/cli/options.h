@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "circuit/netlist.h"
+
 namespace gearpatch::cli {
 
 namespace po = boost::program_options;
@@ -17,5 +19,12 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
 /// The one positional file a command takes; Error "<command> takes one <what>" otherwise.
 std::string single_file(const po::variables_map& vm, const std::string& command,
                         const std::string& what = "SCENE");
+
+/// Adds --quality, the ngspice accuracy preset of the commands that write or
+/// run a deck, with each preset's measured error and time in its help.
+void add_quality_option(po::options_description& options, const std::string& note = "");
+
+/// The transient settings of the --quality preset chosen; Error for an unknown name.
+circuit::TransientControl chosen_quality(const po::variables_map& vm);
 
 }  // namespace gearpatch::cli

@@ -1,7 +1,6 @@
 #include <cstdio>
 #include <fmt/format.h>
 
-#include "bench/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
 #include "common/atomic_file.h"
@@ -24,13 +23,12 @@ int run_verify(const std::vector<std::string>& args) {
                    verify::default_tolerance(circuit::Level::hardware)).c_str())
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
        "(as settings --autoscale) instead of the paper's a-priori maxima")
-      ("quality", po::value<std::string>()->default_value(std::string(bench::default_quality())),
-       (bench::quality_help() + "; ignored with --deck").c_str())
       ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s")
       ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE");
+  add_quality_option(options, "; ignored with --deck");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
@@ -46,7 +44,7 @@ int run_verify(const std::vector<std::string>& args) {
     if (!(*o.tolerance > 0)) throw Error("--tolerance must be > 0");
   }
   o.autoscale = vm.count("autoscale") > 0;
-  o.transient = bench::quality_preset(vm["quality"].as<std::string>()).control;
+  o.transient = chosen_quality(vm);
   if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
   const double timeout = vm["timeout"].as<double>();
   if (!(timeout > 0)) throw Error("--timeout must be > 0");
