@@ -13,6 +13,7 @@
 #include "bench/pareto.h"
 #include "bench/quality.h"
 #include "common/atomic_file.h"
+#include "common/gnuplot.h"
 #include "common/error.h"
 #include "support.h"
 
@@ -264,12 +265,8 @@ TEST_CASE("a small bench run writes JSON with the machine and finite numbers", "
   CHECK(markdown.find("![work-precision plot") != std::string::npos);
   CHECK(markdown.find("| bild5b |") != std::string::npos);
 
-  const std::string plot = temp_file("plot.svg");
-  fs::remove(plot);
-  bench::write_plot(r, plot);
-  CHECK(read_file(plot).find("<svg") != std::string::npos);
-  fs::remove(plot);
-  CHECK_THROWS_AS(bench::write_plot(r, temp_file("plot.pdf")), Error);
+  CHECK(bench::plot_image(r, plot_format("plot.svg")).find("<svg") != std::string::npos);
+  CHECK_THROWS_AS(plot_format(temp_file("plot.pdf")), Error);
 }
 
 TEST_CASE("the bench command runs a chosen knob family and verify takes a quality preset", "[bench]") {

@@ -363,20 +363,20 @@ std::string render_panel(const std::string& id, const std::string& title, const 
     const std::string block = fmt::format("$p{}_{}", id, n++);
     data += block + " << EOD\n";
     for (const Xy& p : s.points)
-      data += s.labels ? fmt::format("{} {} \"{}\"\n", format_number(p.x), format_number(p.y), p.label)
+      data += s.labels ? fmt::format("{} {} \"{}\"\n", format_number(p.x), format_number(p.y), gnuplot_data_label(p.label))
                        : fmt::format("{} {}\n", format_number(p.x), format_number(p.y));
     data += "EOD\n";
     plot += (plot.empty() ? "plot " : ", \\\n     ") + block +
             (s.labels ? " using 1:2:3 " : " using 1:2 ") + s.style +
-            (s.labels ? "" : " title '" + s.title + "'");
+            (s.labels ? "" : " title " + gnuplot_string(s.title));
   }
   if (plot.empty()) return "";
-  return data + fmt::format("set title \"{}\"\n", title) + plot + "\n";
+  return data + fmt::format("set title {} noenhanced\n", gnuplot_string(title)) + plot + "\n";
 }
 
 }  // namespace
 
-void write_plot(const BenchResult& r, const std::string& path) {
+std::string plot_image(const BenchResult& r, const std::string& format) {
   // The all-scenes panel: worst error and total time of each ngspice knob.
   std::vector<Row> all, middle;
   for (const AggregatePoint& a : r.aggregate) {
@@ -407,9 +407,9 @@ void write_plot(const BenchResult& r, const std::string& path) {
   std::string script = fmt::format(
       "set logscale xy\nset format x '10^{{%L}}'\nset format y '10^{{%L}}'\nset grid\n"
       "set xlabel 'time per run [s] (ngspice: CPU)'\nset ylabel 'error [fraction of full scale]'\n"
-      "set multiplot layout {},{} title 'gearpatch bench: work-precision (log-log), {} cores {}, {}'\n",
-      rows, columns, r.machine.nproc,
-      r.machine.cpu_model, r.machine.date);
+      "set multiplot layout {},{} title {} noenhanced\n", rows, columns,
+      gnuplot_string(fmt::format("gearpatch bench: work-precision (log-log), {} cores {}, {}", r.machine.nproc,
+                                 r.machine.cpu_model, r.machine.date)));
   // First panel: the key alone (every series, with NaN data), then the panels.
   script += "set key inside center center font ',10'\nunset title\nunset border\nunset tics\nunset grid\n"
             "unset xlabel\nunset ylabel\nset yrange [0:1]\nset xrange [0:1]\nunset logscale xy\n"
@@ -428,7 +428,7 @@ void write_plot(const BenchResult& r, const std::string& path) {
   for (const std::string& panel : panels) script += panel;
   script += "unset multiplot\n";
 
-  draw_with_gnuplot(path, 600 * columns, 450 * rows, script);
+  return draw_with_gnuplot(format, 600 * columns, 450 * rows, script);
 }
 
 }  // namespace gearpatch::bench

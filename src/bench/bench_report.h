@@ -19,7 +19,7 @@ std::string to_markdown(const BenchResult& result, const std::string& plot_path 
 /// The work–precision plot through gnuplot: error against time, log–log, one
 /// panel for all scenes (worst error, total ngspice time) and one per scene,
 /// a series per knob family, the Pareto front of the ngspice points as a
-/// line. PNG or SVG by the extension; written atomically.
-void write_plot(const BenchResult& result, const std::string& path);
+/// line. Returns the image, in `format` "png" or "svg" (common/gnuplot.h).
+std::string plot_image(const BenchResult& result, const std::string& format);
 
 }  // namespace gearpatch::bench

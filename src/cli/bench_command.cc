@@ -8,9 +8,10 @@
 #include "bench/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
-#include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
+#include "common/output_set.h"
+#include "common/process.h"
 
 namespace gearpatch::cli {
 namespace {
@@ -105,10 +106,11 @@ int run_bench(const std::vector<std::string>& args) {
   o.repetitions = vm["repeat"].as<int>();
   o.ngspice_repetitions = vm["ngspice-repeat"].as<int>();
   if (o.repetitions < 1 || o.ngspice_repetitions < 1) throw Error("--repeat and --ngspice-repeat must be >= 1");
-  const double timeout = vm["timeout"].as<double>();
-  if (!(timeout > 0)) throw Error("--timeout must be > 0");
-  o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
-  if (vm.count("plot")) check_plot_path(vm["plot"].as<std::string>());
+  o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
+  OutputSet outputs;  // every target checked now, before the run
+  for (const char* option : {"json", "plot", "markdown"})
+    if (vm.count(option)) outputs.add(std::string("--") + option, vm[option].as<std::string>());
+  const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
   o.command = "gearpatch bench";
   for (const std::string& a : args) o.command += " " + a;
   o.progress = [](const std::string& line) { std::fprintf(stderr, "gearpatch bench: %s\n", line.c_str()); };
@@ -116,12 +118,18 @@ int run_bench(const std::vector<std::string>& args) {
 
   auto simulator = spice::make_batch_ngspice();
   const bench::BenchResult result = bench::run_bench(o, *simulator);
-  if (vm.count("json")) write_file_atomically(vm["json"].as<std::string>(), bench::to_json(result));
-  if (vm.count("plot")) bench::write_plot(result, vm["plot"].as<std::string>());
-  if (vm.count("markdown"))
-    write_file_atomically(vm["markdown"].as<std::string>(),
-                          bench::to_markdown(result, vm.count("plot") ? vm["plot"].as<std::string>() : ""));
-  std::fputs(bench::to_table(result).c_str(), stdout);
+  const std::string table = bench::to_table(result);
+  try {
+    if (outputs.has("--json")) outputs.stage("--json", bench::to_json(result));
+    if (outputs.has("--plot")) outputs.stage("--plot", bench::plot_image(result, plot_as));
+    if (outputs.has("--markdown"))
+      outputs.stage("--markdown", bench::to_markdown(result, vm.count("plot") ? vm["plot"].as<std::string>() : ""));
+    outputs.commit();
+  } catch (...) {
+    std::fputs(table.c_str(), stdout);  // the measurements stand; their files do not land
+    throw;
+  }
+  std::fputs(table.c_str(), stdout);
   return 0;
 }
 

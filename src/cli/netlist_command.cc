@@ -5,7 +5,7 @@
 #include "circuit/netlist.h"
 #include "cli/command.h"
 #include "cli/options.h"
-#include "common/atomic_file.h"
+#include "common/output_set.h"
 #include "common/error.h"
 #include "scaling/patch.h"
 #include "scene/scene.h"
@@ -30,6 +30,8 @@ int run_netlist(const std::vector<std::string>& args) {
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "netlist");
+  OutputSet outputs;  // the target checked now, before the work
+  outputs.add("--output", vm.count("output") ? vm["output"].as<std::string>() : "-");
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
   const Scene scene = load_scene(file);
   PatchOptions patch_options;
@@ -39,11 +41,9 @@ int run_netlist(const std::vector<std::string>& args) {
   const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, patch_options), level);
   const circuit::TransientControl control = chosen_quality(vm);
   const std::string deck = circuit::render_netlist(c, level, scene.machine, control);
-  if (!vm.count("output")) {
-    std::fputs(deck.c_str(), stdout);
-    return 0;
-  }
-  write_file_atomically(vm["output"].as<std::string>(), deck);
+  outputs.stage("--output", deck);
+  outputs.commit();
+  if (!vm.count("output") || vm["output"].as<std::string>() == "-") return 0;
   std::printf("%s: %zu amplifiers, %zu function blocks, level %s\n", vm["output"].as<std::string>().c_str(),
               c.amplifiers.size(), c.blocks.size(), std::string(level_name(level)).c_str());
   for (const auto& what : c.omitted) std::printf("  left out: %s\n", what.c_str());

@@ -4,7 +4,7 @@
 
 #include "cli/command.h"
 #include "cli/options.h"
-#include "common/atomic_file.h"
+#include "common/output_set.h"
 #include "common/error.h"
 #include "model/stage_reduction.h"
 
@@ -23,6 +23,8 @@ int run_reduce(const std::vector<std::string>& args) {
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "reduce", "STAGES");
+  OutputSet outputs;  // the target checked now, before the work
+  if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   const auto stages = load_stages(file);
   const StageReduction r = reduce_stages(stages);
   std::string table = fmt::format("{:<8} {:>14} {:>14} {:>12}\n", "stage", "c [N·m/rad]", "d [N·m·s/rad]", "d/c [s]");
@@ -41,7 +43,8 @@ int run_reduce(const std::vector<std::string>& args) {
     nlohmann::json j = {{"stiffness", r.stiffness}, {"damping", r.damping}, {"exact", r.exact},
                         {"worst_response_error", r.worst_response_error},
                         {"frequency_of_worst", r.frequency_of_worst}};
-    write_file_atomically(vm["json"].as<std::string>(), j.dump(2) + "\n");
+    outputs.stage("--json", j.dump(2) + "\n");
+    outputs.commit();
   }
   return 0;
 }

@@ -2,8 +2,8 @@
 
 #include "cli/command.h"
 #include "cli/options.h"
-#include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/output_set.h"
 #include "scaling/patch.h"
 #include "scene/scene.h"
 
@@ -33,6 +33,8 @@ int run_settings(const std::vector<std::string>& args) {
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "settings");
+  OutputSet outputs;  // the target checked now, before the run
+  outputs.add("--out", vm.count("out") ? vm["out"].as<std::string>() : "-");
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
   o.check_peaks = vm.count("no-check") == 0;
@@ -43,8 +45,8 @@ int run_settings(const std::vector<std::string>& args) {
   if (vm.count("beta")) o.beta = vm["beta"].as<double>();
   const Patch patch = make_patch(load_scene(file), o);
   const std::string text = vm.count("json") ? to_json(patch) : to_table(patch);
-  if (vm.count("out")) write_file_atomically(vm["out"].as<std::string>(), text);
-  else std::fputs(text.c_str(), stdout);
+  outputs.stage("--out", text);
+  outputs.commit();
   if (vm.count("json") || vm.count("out"))  // the table already lists them
     for (const auto& w : patch.warnings) std::fprintf(stderr, "gearpatch settings: warning: %s\n", w.c_str());
   return 0;

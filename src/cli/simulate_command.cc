@@ -3,8 +3,8 @@
 
 #include "cli/command.h"
 #include "cli/options.h"
-#include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/output_set.h"
 #include "model/gear_model.h"
 #include "scene/scene.h"
 #include "solver/integrate.h"
@@ -27,6 +27,9 @@ int run_simulate(const std::vector<std::string>& args) {
                        "writes the trajectory in physical units and real time.", options, vm))
     return 0;
   const std::string file = single_file(vm, "simulate");
+  OutputSet outputs;  // every target checked now, before the run
+  outputs.add("--out", vm.count("out") ? vm["out"].as<std::string>() : "-");
+  if (vm.count("events")) outputs.add("--events", vm["events"].as<std::string>());
   const Scene scene = load_scene(file);
   RunSpec spec = RunSpec::from_scene(scene);
   if (vm.count("dt")) {
@@ -38,9 +41,9 @@ int run_simulate(const std::vector<std::string>& args) {
   const GearModel model(GearParameters::from_scene(scene));
   const Trajectory trajectory =
       simulate(model, initial_state(scene), spec, parse_solver(vm["solver"].as<std::string>()), rtol);
-  if (vm.count("out")) write_file_atomically(vm["out"].as<std::string>(), trajectory.samples_csv());
-  else std::fputs(trajectory.samples_csv().c_str(), stdout);
-  if (vm.count("events")) write_file_atomically(vm["events"].as<std::string>(), trajectory.events_csv());
+  outputs.stage("--out", trajectory.samples_csv());
+  if (outputs.has("--events")) outputs.stage("--events", trajectory.events_csv());
+  outputs.commit();
   return 0;
 }
 

@@ -6,6 +6,8 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
+#include "common/output_set.h"
+#include "common/process.h"
 #include "scene/scene.h"
 #include "verify/report.h"
 #include "verify/verify.h"
@@ -27,7 +29,8 @@ int run_verify(const std::vector<std::string>& args) {
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s")
-      ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE");
+      ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE (written before the "
+       "run and kept whatever its outcome, to rerun it by hand)");
   add_quality_option(options, "; ignored with --deck");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
@@ -46,19 +49,27 @@ int run_verify(const std::vector<std::string>& args) {
   o.autoscale = vm.count("autoscale") > 0;
   o.transient = chosen_quality(vm);
   if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
-  const double timeout = vm["timeout"].as<double>();
-  if (!(timeout > 0)) throw Error("--timeout must be > 0");
-  o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
-  if (vm.count("plot")) check_plot_path(vm["plot"].as<std::string>());
-  if (vm.count("keep-deck")) o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
+  o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
+  OutputSet outputs;  // every target checked now, before the run
+  if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
+  if (vm.count("plot")) outputs.add("--plot", vm["plot"].as<std::string>());
+  const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
+  if (vm.count("keep-deck")) o.limits.keep_deck_as = check_output_path(vm["keep-deck"].as<std::string>(), "--keep-deck");
   const Scene scene = load_scene(file);
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   auto simulator = spice::make_batch_ngspice();
   const verify::VerifyResult result = verify::verify(scene, o, *simulator);
-  if (vm.count("json")) write_file_atomically(vm["json"].as<std::string>(), verify::to_json(result));
-  if (vm.count("plot")) verify::write_plot(result, vm["plot"].as<std::string>());
-  std::fputs(verify::to_table(result).c_str(), stdout);
+  const std::string table = verify::to_table(result);
+  try {
+    if (outputs.has("--json")) outputs.stage("--json", verify::to_json(result));
+    if (outputs.has("--plot")) outputs.stage("--plot", verify::plot_image(result, plot_as));
+    outputs.commit();
+  } catch (...) {
+    std::fputs(table.c_str(), stdout);  // the verdict stands; its files do not land
+    throw;
+  }
+  std::fputs(table.c_str(), stdout);
   return result.passed ? 0 : 1;
 }
 

@@ -1,35 +1,28 @@
 #include "spice/batch_ngspice.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <regex>
 #include <sstream>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/process.h"
+#include "common/scratch_dir.h"
 #include "spice/rawfile.h"
-
-extern char** environ;
 
 namespace gearpatch::spice {
 
 namespace fs = std::filesystem;
-using namespace std::chrono_literals;
 
 namespace {
 
@@ -149,7 +142,7 @@ void write_file(const fs::path& path, std::string_view text) {
 
 /// The whole file, or its last `limit` bytes: a chattering run's log can be
 /// huge, and what explains its end is at its end.
-std::string read_file(const fs::path& path, std::uintmax_t limit = std::uintmax_t{1} << 20) {
+std::string read_tail(const fs::path& path, std::uintmax_t limit = std::uintmax_t{1} << 20) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
   in.seekg(0, std::ios::end);
@@ -162,186 +155,6 @@ std::string read_file(const fs::path& path, std::uintmax_t limit = std::uintmax_
   return bytes;
 }
 
-std::uintmax_t size_or_zero(const fs::path& path) {
-  std::error_code ec;
-  auto size = fs::file_size(path, ec);
-  return ec ? 0 : size;
-}
-
-/// A private directory for one run (mkdtemp: no other user can plant files in
-/// it). Removed at the end unless a failure asks to keep it for inspection.
-class TempDir {
- public:
-  TempDir() {
-    std::string pattern = (fs::temp_directory_path() / "gearpatch-ngspice-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) {
-      throw Error(fmt::format("cannot create a temporary directory {}: {}", pattern, std::strerror(errno)), kSimulator);
-    }
-    path_ = pattern;
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  ~TempDir() {
-    std::error_code ec;
-    if (!keep_) fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  void keep() { keep_ = true; }
-
- private:
-  fs::path path_;
-  bool keep_ = false;
-};
-
-// ---------------------------------------------------------------- process
-
-/// A running ngspice in its own process group. The destructor kills the group
-/// and reaps it, so no ngspice outlives a failed or abandoned run.
-class Child {
- public:
-  explicit Child(pid_t pid) : pid_(pid) {}
-  Child(const Child&) = delete;
-  Child& operator=(const Child&) = delete;
-  ~Child() { kill_and_reap(); }
-
-  /// The wait status once the process has ended, nothing while it runs.
-  std::optional<int> poll() {
-    int status = 0;
-    pid_t r = waitpid(pid_, &status, WNOHANG);
-    if (r == 0 || (r < 0 && errno == EINTR)) return std::nullopt;
-    pid_ = -1;
-    if (r < 0) throw Error(fmt::format("waiting for ngspice failed: {}", std::strerror(errno)), kSimulator);
-    return status;
-  }
-
-  void kill_and_reap() {
-    if (pid_ <= 0) return;
-    ::kill(-pid_, SIGKILL);
-    while (waitpid(pid_, nullptr, 0) < 0 && errno == EINTR) {
-    }
-    pid_ = -1;
-  }
-
- private:
-  pid_t pid_;
-};
-
-/// The parent's environment with a C numeric locale: ngspice reads and writes
-/// numbers through the locale, and "1,5" is not 1.5.
-std::vector<std::string> child_environment() {
-  std::vector<std::string> env;
-  for (char** e = environ; e && *e; ++e) {
-    std::string_view entry(*e);
-    if (entry.starts_with("LC_ALL=") || entry.starts_with("LC_NUMERIC=")) continue;
-    env.emplace_back(entry);
-  }
-  env.emplace_back("LC_ALL=C");
-  env.emplace_back("LC_NUMERIC=C");
-  return env;
-}
-
-std::vector<char*> c_strings(std::vector<std::string>& strings) {
-  std::vector<char*> out;
-  for (auto& s : strings) out.push_back(s.data());
-  out.push_back(nullptr);
-  return out;
-}
-
-bool is_executable_file(const fs::path& path) {
-  std::error_code ec;
-  return fs::is_regular_file(path, ec) && access(path.c_str(), X_OK) == 0;
-}
-
-/// The absolute path of the executable, looked up in PATH as a shell would.
-/// Done here rather than left to exec, because not every way of spawning
-/// reports a failed exec (under valgrind the child just exits 127).
-fs::path find_executable(const std::string& executable) {
-  std::optional<fs::path> found;
-  if (executable.find('/') != std::string::npos) {
-    if (is_executable_file(executable)) found = fs::absolute(executable);
-  } else if (const char* path = std::getenv("PATH")) {
-    std::string_view dirs(path);
-    while (!found) {
-      auto colon = std::min(dirs.find(':'), dirs.size());
-      fs::path candidate = fs::path(colon == 0 ? "." : dirs.substr(0, colon)) / executable;
-      if (is_executable_file(candidate)) found = fs::absolute(candidate);
-      if (colon == dirs.size()) break;
-      dirs.remove_prefix(colon + 1);
-    }
-  }
-  if (!found) {
-    throw Error(fmt::format("ngspice was not found (tried '{}'); install it, e.g. 'apt-get install ngspice'", executable),
-                kSimulator);
-  }
-  return *found;
-}
-
-/// Starts `ngspice -b -r out.raw deck.cir` in `dir`, no shell, stdout and stderr
-/// to files there, in a new process group so that a kill reaches everything.
-pid_t spawn_ngspice(const std::string& executable, const fs::path& dir) {
-  std::string program = find_executable(executable).string();
-  std::vector<std::string> args = {program, "-b", "-r", "out.raw", "deck.cir"};
-  std::vector<std::string> env = child_environment();
-  auto argv = c_strings(args);
-  auto envp = c_strings(env);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, (dir / "stdout.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawn_file_actions_addopen(&actions, 2, (dir / "stderr.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-  posix_spawnattr_t attr;
-  posix_spawnattr_init(&attr);
-  sigset_t no_signals, all_signals;
-  sigemptyset(&no_signals);
-  sigfillset(&all_signals);
-  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
-  posix_spawnattr_setpgroup(&attr, 0);
-  posix_spawnattr_setsigmask(&attr, &no_signals);
-  posix_spawnattr_setsigdefault(&attr, &all_signals);
-
-  pid_t pid = -1;
-  int err = posix_spawn(&pid, program.c_str(), &actions, &attr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  posix_spawnattr_destroy(&attr);
-  if (err != 0) throw Error(fmt::format("cannot start ngspice '{}': {}", program, std::strerror(err)), kSimulator);
-  return pid;
-}
-
-std::string seconds(std::chrono::milliseconds d) {
-  return fmt::format("{:g}", std::chrono::duration<double>(d).count());
-}
-
-/// Waits for ngspice while enforcing the limits; returns its wait status.
-/// Polls at growing intervals so that short runs return quickly.
-int wait_within_limits(Child& child, const fs::path& dir, const RunLimits& limits) {
-  const auto start = std::chrono::steady_clock::now();
-  auto output_bytes = [&] {
-    return size_or_zero(dir / "out.raw") + size_or_zero(dir / "stdout.txt") + size_or_zero(dir / "stderr.txt");
-  };
-  auto check_size = [&] {
-    if (auto bytes = output_bytes(); bytes > limits.max_output_bytes) {
-      child.kill_and_reap();
-      throw Error(fmt::format("ngspice output exceeded the cap of {} bytes (wrote {}); killed",
-                              limits.max_output_bytes, bytes), kSimulator);
-    }
-  };
-  auto delay = 1ms;
-  while (true) {
-    if (auto status = child.poll()) {
-      check_size();  // a fast run can pass the cap between two polls
-      return *status;
-    }
-    if (std::chrono::steady_clock::now() - start > limits.timeout) {
-      child.kill_and_reap();
-      throw Error(fmt::format("ngspice timed out after {} s; killed", seconds(limits.timeout)), kSimulator);
-    }
-    check_size();
-    std::this_thread::sleep_for(delay);
-    delay = std::min<std::chrono::milliseconds>(delay * 2, 50ms);
-  }
-}
 
 // ---------------------------------------------------------------- result
 
@@ -356,19 +169,29 @@ Vectors to_vectors(const Plot& plot) {
 }
 
 /// Runs the deck already written to dir/deck.cir and reads the result.
-Vectors run_in(const std::string& executable, const fs::path& dir, const RunLimits& limits) {
-  Child child(spawn_ngspice(executable, dir));
-  int status = wait_within_limits(child, dir, limits);
-  std::string out = read_file(dir / "stdout.txt");
-  std::string err = read_file(dir / "stderr.txt");
-  if (WIFSIGNALED(status)) {
-    throw Error(fmt::format("ngspice was killed by signal {}: {}", WTERMSIG(status), last_words(out, err)), kSimulator);
+Vectors run_in(const std::string& executable, const ScratchDir& dir, const RunLimits& limits) {
+  ChildSpec spec;
+  spec.name = "ngspice";
+  spec.program = executable;
+  spec.install_hint = "apt-get install ngspice";
+  spec.args = {"-b", "-r", "out.raw", "deck.cir"};
+  spec.directory = dir.path();
+  spec.stdout_file = dir / "stdout.txt";
+  spec.stderr_file = dir / "stderr.txt";
+  spec.counted_files = {dir / "out.raw"};
+  spec.timeout = limits.timeout;
+  spec.max_output_bytes = limits.max_output_bytes;
+  const ChildExit exit = run_child(spec);
+  std::string out = read_tail(spec.stdout_file);
+  std::string err = read_tail(spec.stderr_file);
+  if (exit.signal) {
+    throw Error(fmt::format("ngspice was killed by signal {}: {}", *exit.signal, last_words(out, err)), kSimulator);
   }
-  if (auto message = diagnose_ngspice_failure(out, err, WEXITSTATUS(status))) throw Error(*message, kSimulator);
+  if (auto message = diagnose_ngspice_failure(out, err, exit.exit_code)) throw Error(*message, kSimulator);
   if (!fs::exists(dir / "out.raw")) {
     throw Error("ngspice wrote no rawfile: " + last_words(out, err), kSimulator);
   }
-  auto plots = read_rawfile(read_file(dir / "out.raw", std::numeric_limits<std::uintmax_t>::max()));
+  auto plots = read_rawfile(read_tail(dir / "out.raw", std::numeric_limits<std::uintmax_t>::max()));
   return to_vectors(plots.back());
 }
 
@@ -378,11 +201,12 @@ class BatchNgspice : public Simulator {
   explicit BatchNgspice(std::string executable) : executable_(std::move(executable)) {}
 
   Vectors run(const std::string& deck, const RunLimits& limits) override {
-    if (!limits.keep_deck_as.empty()) write_file(limits.keep_deck_as, deck);
-    TempDir dir;
-    write_file(dir.path() / "deck.cir", deck);
+    // Kept whatever the outcome: it is there to rerun a failure by hand.
+    if (!limits.keep_deck_as.empty()) write_file_atomically(limits.keep_deck_as, deck, "--keep-deck");
+    ScratchDir dir("gearpatch-ngspice", kSimulator);
+    write_file(dir / "deck.cir", deck);
     try {
-      return run_in(executable_, dir.path(), limits);
+      return run_in(executable_, dir, limits);
     } catch (const Error& e) {
       // Keep the deck for a rerun by hand; the rawfile can be huge and is dropped.
       std::string kept = limits.keep_deck_as;

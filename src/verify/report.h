@@ -13,7 +13,7 @@ std::string to_table(const VerifyResult& result);
 std::string to_json(const VerifyResult& result);
 
 /// Circuit and reference traces of each signal on one time axis, through
-/// gnuplot; PNG or SVG by the file's extension. Written atomically.
-void write_plot(const VerifyResult& result, const std::string& path);
+/// gnuplot. Returns the image, in `format` "png" or "svg" (common/gnuplot.h).
+std::string plot_image(const VerifyResult& result, const std::string& format);
 
 }  // namespace gearpatch::verify

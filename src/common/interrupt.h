@@ -1,0 +1,37 @@
+#pragma once
+#include <sys/types.h>
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+
+namespace gearpatch::interrupt {
+
+/// What an interrupted run must undo, kept while it is live: the process
+/// groups of running children and the scratch folders on disk. On SIGINT,
+/// SIGTERM or SIGHUP a watcher thread kills every group, removes every
+/// folder and then ends the program by that same signal (a shell sees
+/// 128 + n). A signal the program was started with ignored stays ignored.
+///
+/// Every change to the registry and every reap happens under one lock that
+/// the watcher takes for good, so nothing is spawned, reaped or reported
+/// after an interrupt has begun.
+
+/// Makes a folder with `make` (which returns its path) and registers it.
+std::filesystem::path add_folder(const std::function<std::filesystem::path()>& make);
+
+/// Unregisters a folder, and removes it from disk unless `keep`.
+void drop_folder(const std::filesystem::path& folder, bool keep);
+
+/// Starts a child with `spawn` (which returns its pid, the leader of its own
+/// process group) and registers the group.
+pid_t add_child(const std::function<pid_t()>& spawn);
+
+/// The child's wait status once it has ended (then it is unregistered),
+/// nothing while it runs.
+std::optional<int> poll_child(pid_t pid);
+
+/// Kills the child's whole process group and reaps the child.
+void kill_child(pid_t pid);
+
+}  // namespace gearpatch::interrupt
