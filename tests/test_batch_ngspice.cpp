@@ -170,6 +170,12 @@ TEST_CASE("a run past its wall-clock limit is killed and reported", "[spice]") {
   check_deck_kept(message, kEndlessDeck);
 }
 
+TEST_CASE("a timeout too long to count in nanoseconds is no instant timeout", "[spice]") {
+  RunLimits limits;
+  limits.timeout = std::chrono::milliseconds::max();
+  check_rc(make_batch_ngspice()->run(kRcDeck, limits));
+}
+
 TEST_CASE("a run past its output cap is killed and reported", "[spice]") {
   RunLimits limits;
   limits.max_output_bytes = 200'000;

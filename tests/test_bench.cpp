@@ -266,6 +266,16 @@ TEST_CASE("a small bench run writes JSON with the machine and finite numbers", "
   CHECK(markdown.find("| bild5b |") != std::string::npos);
 
   CHECK(bench::plot_image(r, plot_format("plot.svg")).find("<svg") != std::string::npos);
+  // A scene name and a CPU model are drawn as text, never run.
+  const std::string ran = temp_file("ran");
+  fs::remove(ran);
+  bench::BenchResult evil = r;
+  evil.scenes[0].scene = "s'; system \"touch " + ran + "\"; print '\nset title \"@x\"";
+  evil.machine.cpu_model = "cpu'; system \"touch " + ran + "\"; print '";
+  const std::string image = bench::plot_image(evil, "svg");
+  CHECK_FALSE(fs::exists(ran));
+  CHECK_THAT(image, Catch::Contains("s'; system \"touch " + ran + "\"; print ' set title \"@x\""));
+  CHECK_THAT(image, Catch::Contains("cpu'; system \"touch " + ran + "\"; print '"));
   CHECK_THROWS_AS(plot_format(temp_file("plot.pdf")), Error);
 }
 

@@ -10,6 +10,7 @@
 #include "circuit/netlist.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/gnuplot.h"
 #include "scaling/patch.h"
 #include "spice/scripted_simulator.h"
 #include "support.h"
@@ -184,4 +185,31 @@ TEST_CASE("verify writes its report as JSON and its traces as a plot", "[verify]
   const std::string image = read_file(png);
   REQUIRE(image.size() > 1000);
   CHECK(image.substr(1, 3) == "PNG");
+}
+
+TEST_CASE("a scene name and a plot path are drawn as text, never run by gnuplot", "[verify][ngspice][cli]") {
+  const fs::path dir = temp_file("inject");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string ran = (dir / "ran").string(), quoted = (dir / "quoted").string();
+  // Every way out of a gnuplot string: its quote, a newline, @ macros, `backquotes`.
+  const std::string name = "x'; system \"touch " + ran + "\"; print '@GPVAL_PWD `touch " + quoted + "` a_b";
+  std::string scene = read_file(testing::source_path("scenes/bild5a.ini"));
+  scene.replace(scene.find("name = bild5a"), std::string("name = bild5a").size(), "name = " + name);
+  write_file_atomically((dir / "scene.ini").string(), scene);
+  const std::string plot = (dir / "it's \"a\" plot.svg").string();
+  std::string output;
+  const int status = testing::run_command(std::string(GEARPATCH_BINARY) + " verify " + (dir / "scene.ini").string() +
+                                              " --plot '" + std::regex_replace(plot, std::regex("'"), "'\\''") + "'",
+                                          output);
+  INFO(output);
+  CHECK(status == 0);
+  CHECK_FALSE(fs::exists(ran));
+  CHECK_FALSE(fs::exists(quoted));
+  REQUIRE(fs::exists(plot));
+  CHECK_THAT(read_file(plot), Catch::Contains("gearpatch verify " + name + " (ideal): PASS"));
+  fs::remove_all(dir);
+
+  CHECK(gnuplot_string("it's\nnew @x `y`") == "'it''s new @x `y`'");
+  CHECK(gnuplot_data_label("a\"b\nEOD") == "a b EOD");
 }

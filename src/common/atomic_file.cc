@@ -117,6 +117,12 @@ void StagedFile::write(std::string_view content) {
   if (::close(fd) != 0 || !ok) fail(std::string("cannot write: ") + std::strerror(ok ? errno : err));
 }
 
+void StagedFile::recheck() const {
+  struct stat st {};
+  if (target_ != "-" && ::lstat(target_.c_str(), &st) == 0)
+    if (auto kind = refused_kind(st.st_mode); !kind.empty()) fail("is " + kind + ", not a regular file");
+}
+
 void StagedFile::commit() {
   if (target_ == "-") {
     std::fwrite(stdout_text_.data(), 1, stdout_text_.size(), stdout);
@@ -124,10 +130,7 @@ void StagedFile::commit() {
     return;
   }
   if (temporary_.empty()) fail("nothing was written");
-  // Again: the target may have become a FIFO or a device since the check.
-  struct stat st {};
-  if (::lstat(target_.c_str(), &st) == 0)
-    if (auto kind = refused_kind(st.st_mode); !kind.empty()) fail("is " + kind + ", not a regular file");
+  recheck();
   if (std::rename(temporary_.c_str(), target_.c_str()) != 0) fail(std::string("cannot write: ") + std::strerror(errno));
   temporary_.clear();
 }

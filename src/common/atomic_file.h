@@ -30,7 +30,10 @@ class StagedFile {
 
   /// Writes the whole contents (once) to the temporary, or keeps them for stdout.
   void write(std::string_view content);
-  /// Renames the temporary over the target (checked again just before), or prints.
+  /// Throws Error if the target has become something that is not replaced
+  /// (a FIFO, a device, ...) since it was checked.
+  void recheck() const;
+  /// Renames the temporary over the target (rechecked just before), or prints.
   void commit();
 
  private:

@@ -30,6 +30,7 @@ void OutputSet::stage(const std::string& option, std::string_view content) {
 }
 
 void OutputSet::commit() {
+  for (const auto& [option, file] : staged_) file.recheck();  // all or none, as far as can be known
   for (auto& [option, file] : staged_)
     if (targets_.at(option) != "-") file.commit();
   for (auto& [option, file] : staged_)
