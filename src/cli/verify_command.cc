@@ -54,7 +54,10 @@ int run_verify(const std::vector<std::string>& args) {
   if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   if (vm.count("plot")) outputs.add("--plot", vm["plot"].as<std::string>());
   const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
-  if (vm.count("keep-deck")) o.limits.keep_deck_as = check_output_path(vm["keep-deck"].as<std::string>(), "--keep-deck");
+  if (vm.count("keep-deck")) {
+    check_output_path(vm["keep-deck"].as<std::string>(), "--keep-deck");
+    o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
+  }
   const Scene scene = load_scene(file);
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "common/error.h"
+#include "common/interrupt.h"
 
 namespace gearpatch {
 namespace {
@@ -83,7 +84,7 @@ StagedFile::StagedFile(StagedFile&& other) noexcept
 }
 
 StagedFile::~StagedFile() {
-  if (!temporary_.empty()) std::remove(temporary_.c_str());
+  if (!temporary_.empty()) interrupt::drop_scratch(temporary_, false);
 }
 
 void StagedFile::fail(const std::string& problem) const { throw Error(named(option_, path_) + ": " + problem); }
@@ -95,10 +96,15 @@ void StagedFile::write(std::string_view content) {
   }
   const fs::path target(target_);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string pattern = (folder / ("." + target.filename().string() + ".XXXXXX")).string();
-  const int fd = ::mkstemp(pattern.data());
-  if (fd < 0) fail(std::string("cannot write: ") + std::strerror(errno));
-  temporary_ = pattern;
+  int fd = -1;
+  // Registered, so that an interrupt removes it (common/interrupt.h).
+  interrupt::add_scratch([&] {
+    std::string pattern = (folder / ("." + target.filename().string() + ".XXXXXX")).string();
+    fd = ::mkstemp(pattern.data());
+    if (fd < 0) fail(std::string("cannot write: ") + std::strerror(errno));
+    temporary_ = pattern;
+    return fs::path(pattern);
+  });
   for (const char* data = content.data(); !content.empty();) {
     const ssize_t n = ::write(fd, data, content.size());
     if (n < 0 && errno == EINTR) continue;
@@ -132,6 +138,7 @@ void StagedFile::commit() {
   if (temporary_.empty()) fail("nothing was written");
   recheck();
   if (std::rename(temporary_.c_str(), target_.c_str()) != 0) fail(std::string("cannot write: ") + std::strerror(errno));
+  interrupt::drop_scratch(temporary_, true);  // now the target itself
   temporary_.clear();
 }
 

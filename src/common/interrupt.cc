@@ -22,7 +22,7 @@ constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 struct Registry {
   std::mutex lock;
   std::set<pid_t> children;
-  std::set<fs::path> folders;
+  std::set<fs::path> scratch;
 };
 
 Registry& registry() {
@@ -50,9 +50,9 @@ extern "C" void on_signal(int sig) {
   Registry& r = registry();
   r.lock.lock();
   for (pid_t pid : r.children) ::kill(-pid, SIGKILL);
-  for (const fs::path& folder : r.folders) {
+  for (const fs::path& path : r.scratch) {
     std::error_code ec;
-    fs::remove_all(folder, ec);
+    fs::remove_all(path, ec);
   }
   ::signal(sig, SIG_DFL);
   sigset_t set;
@@ -82,21 +82,21 @@ void install_once() {
 
 }  // namespace
 
-fs::path add_folder(const std::function<fs::path()>& make) {
+fs::path add_scratch(const std::function<fs::path()>& make) {
   install_once();
   Registry& r = registry();
   std::lock_guard guard(r.lock);
-  fs::path folder = make();
-  r.folders.insert(folder);
-  return folder;
+  fs::path path = make();
+  r.scratch.insert(path);
+  return path;
 }
 
-void drop_folder(const fs::path& folder, bool keep) {
+void drop_scratch(const fs::path& path, bool keep) {
   Registry& r = registry();
   std::lock_guard guard(r.lock);
-  r.folders.erase(folder);
+  r.scratch.erase(path);
   std::error_code ec;
-  if (!keep) fs::remove_all(folder, ec);
+  if (!keep) fs::remove_all(path, ec);
 }
 
 pid_t add_child(const std::function<pid_t()>& spawn) {

@@ -8,20 +8,21 @@
 namespace gearpatch::interrupt {
 
 /// What an interrupted run must undo, kept while it is live: the process
-/// groups of running children and the scratch folders on disk. On SIGINT,
-/// SIGTERM or SIGHUP a watcher thread kills every group, removes every
-/// folder and then ends the program by that same signal (a shell sees
+/// groups of running children, scratch folders and staged output files. On
+/// SIGINT, SIGTERM or SIGHUP a watcher thread kills every group, removes every
+/// scratch path and then ends the program by that same signal (a shell sees
 /// 128 + n). A signal the program was started with ignored stays ignored.
 ///
 /// Every change to the registry and every reap happens under one lock that
 /// the watcher takes for good, so nothing is spawned, reaped or reported
 /// after an interrupt has begun.
 
-/// Makes a folder with `make` (which returns its path) and registers it.
-std::filesystem::path add_folder(const std::function<std::filesystem::path()>& make);
+/// Makes a scratch folder or file with `make` (which returns its path) and
+/// registers it.
+std::filesystem::path add_scratch(const std::function<std::filesystem::path()>& make);
 
-/// Unregisters a folder, and removes it from disk unless `keep`.
-void drop_folder(const std::filesystem::path& folder, bool keep);
+/// Unregisters a scratch path, and removes it from disk unless `keep`.
+void drop_scratch(const std::filesystem::path& path, bool keep);
 
 /// Starts a child with `spawn` (which returns its pid, the leader of its own
 /// process group) and registers the group.

@@ -13,17 +13,17 @@ namespace gearpatch {
 namespace fs = std::filesystem;
 
 ScratchDir::ScratchDir(const std::string& prefix, Error::Kind kind) {
-  path_ = interrupt::add_folder([&] {
+  path_ = interrupt::add_scratch([&] {
     std::error_code ec;
     fs::path base = fs::temp_directory_path(ec);
     if (ec) base = "/tmp";
     std::string pattern = (base / (prefix + "-XXXXXX")).string();
     if (!::mkdtemp(pattern.data()))
       throw Error(fmt::format("cannot create a temporary directory {}: {}", pattern, std::strerror(errno)), kind);
-    return fs::path(pattern);
+    return fs::absolute(pattern);  // children run in it: their file names must not be relative
   });
 }
 
-ScratchDir::~ScratchDir() { interrupt::drop_folder(path_, keep_); }
+ScratchDir::~ScratchDir() { interrupt::drop_scratch(path_, keep_); }
 
 }  // namespace gearpatch

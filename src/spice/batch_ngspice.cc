@@ -202,7 +202,7 @@ class BatchNgspice : public Simulator {
 
   Vectors run(const std::string& deck, const RunLimits& limits) override {
     // Kept whatever the outcome: it is there to rerun a failure by hand.
-    if (!limits.keep_deck_as.empty()) write_file_atomically(limits.keep_deck_as, deck, "--keep-deck");
+    if (!limits.keep_deck_as.empty()) write_file_atomically(limits.keep_deck_as, deck);
     ScratchDir dir("gearpatch-ngspice", kSimulator);
     write_file(dir / "deck.cir", deck);
     try {
