@@ -85,6 +85,10 @@ TEST_CASE("outputs refuse FIFOs, directories and devices, and leave them as they
   CHECK(testing::run_command(kBinary + " reduce " + testing::source_path("scenes/stages/drive_train.ini") + " --json " +
                                  dir / "fifo",
                              output) == 2);
+  CHECK(testing::run_command(kBinary + " bench " + scene("bild5a") + " --only level --json " + dir / "b.json" +
+                                 " --markdown " + dir / "fifo",
+                             output) == 2);
+  CHECK_THAT(output, Catch::Contains("--markdown " + dir / "fifo" + ": is a FIFO") && !Catch::Contains("ngspice"));
   CHECK(fs::is_fifo(dir / "fifo"));
   CHECK(dir.listing() == "fifo folder ");
 

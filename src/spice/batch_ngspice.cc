@@ -1,6 +1,5 @@
 #include "spice/batch_ngspice.h"
 
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -154,7 +153,6 @@ std::string read_tail(const fs::path& path, std::uintmax_t limit = std::uintmax_
   bytes.resize(static_cast<std::size_t>(in.gcount()));
   return bytes;
 }
-
 
 // ---------------------------------------------------------------- result
 
