@@ -68,7 +68,7 @@ int run_bench(const std::vector<std::string>& args) {
        "runs the solver until this many seconds have passed")
       ("repeat", po::value<int>()->default_value(5), "reference solvers: timing repetitions (median taken)")
       ("ngspice-repeat", po::value<int>()->default_value(5), "ngspice runs per point (median time taken)")
-      ("timeout", po::value<double>()->default_value(120), "ngspice wall-clock limit per run, s");
+      ("timeout", po::value<double>()->default_value(120), "ngspice wall-clock limit per run, s (at least 0.001; inf: none)");
   po::variables_map vm;
   if (!parse_arguments(
           args,

@@ -28,7 +28,7 @@ int run_verify(const std::vector<std::string>& args) {
       ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
-      ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s")
+      ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s (at least 0.001; inf: none)")
       ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE (written before the "
        "run and kept whatever its outcome, to rerun it by hand)");
   add_quality_option(options, "; ignored with --deck");
