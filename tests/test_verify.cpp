@@ -1,6 +1,7 @@
 // verify: the main job, against the real ngspice and against a scripted
 // simulator; it must pass the examples, and it must be able to fail.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -8,9 +9,11 @@
 
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
+#include "cli/command.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "scaling/patch.h"
+#include "solver/integrate.h"
 #include "spice/scripted_simulator.h"
 #include "support.h"
 #include "verify/report.h"
@@ -184,4 +187,81 @@ TEST_CASE("verify writes its report as JSON and its traces as a plot", "[verify]
   const std::string image = read_file(png);
   REQUIRE(image.size() > 1000);
   CHECK(image.substr(1, 3) == "PNG");
+}
+
+namespace {
+
+/// The vectors of a perfect circuit for `scene`, from a first run on a dead one.
+spice::Vectors perfect_vectors(const Scene& scene) {
+  spice::ScriptedSimulator probe;
+  spice::Vectors flat;
+  flat.data["time"] = {0, make_patch(scene).beta * scene.duration};
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
+  probe.then_return(flat);
+  return perfect_circuit(scene, verify::verify(scene, {}, probe));
+}
+
+/// The message of the simulator Error verify throws on these vectors.
+std::string simulator_failure(const Scene& scene, const spice::Vectors& vectors) {
+  spice::ScriptedSimulator simulator;
+  simulator.then_return(vectors);
+  try {
+    const verify::VerifyResult r = verify::verify(scene, {}, simulator);
+    FAIL("verify gave a verdict (" << (r.passed ? "pass" : "fail") << ") on broken simulator output");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::simulator);
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("NaN or inf in anything verify reads back is a simulator failure", "[verify]") {
+  const Scene scene = testing::example_scene("bild5b");
+  const spice::Vectors perfect = perfect_vectors(scene);
+  const double t100 = perfect.data.at("time")[100];
+  for (const char* vector : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) {
+    spice::Vectors v = perfect;
+    v.data[vector][100] = std::nan("");
+    const std::string message = simulator_failure(scene, v);
+    CHECK_THAT(message, Catch::Contains(std::string("output ") + vector + " is nan") &&
+                            Catch::Contains(fmt::format("t = {:.6g} s", t100)));
+  }
+  spice::Vectors overloaded = perfect;
+  overloaded.data["v(m_n)"] = std::vector<double>(perfect.data.at("time").size(), 0.0);
+  overloaded.data["v(m_n)"][7] = -INFINITY;
+  CHECK_THAT(simulator_failure(scene, overloaded), Catch::Contains("output v(m_n) is -inf"));
+  spice::Vectors bad_time = perfect;
+  bad_time.data["time"][3] = std::nan("");
+  CHECK_THAT(simulator_failure(scene, bad_time), Catch::Contains("output time is nan at point 3"));
+}
+
+TEST_CASE("a trace cut short or without points is a simulator failure, not a verdict", "[verify]") {
+  const Scene scene = testing::example_scene("bild5b");
+  const spice::Vectors perfect = perfect_vectors(scene);
+  spice::Vectors half = perfect;
+  for (auto& [name, values] : half.data) values.resize(values.size() / 2);
+  CHECK_THAT(simulator_failure(scene, half),
+             Catch::Contains("cut short: it ends at t = ") && Catch::Contains("of the 3 s run"));
+  spice::Vectors none = perfect;
+  for (auto& [name, values] : none.data) values.clear();
+  CHECK_THAT(simulator_failure(scene, none), Catch::Contains("cut short: no complete point"));
+  // The interpolation itself refuses an empty trace (it used to read front() of it).
+  const GearModel model(GearParameters::from_scene(scene));
+  const Trajectory reference = simulate(model, initial_state(scene), RunSpec::from_scene(scene));
+  verify::CircuitTrace empty;
+  for (const char* name : {"omega_p", "omega_s", "dphi", "m0"}) empty.signals[name] = {};
+  try {
+    verify::compare(reference, empty, model, {{"omega_p", 1.0}}, scene.duration, 0);
+    FAIL("compared an empty trace");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::internal);
+  }
+}
+
+TEST_CASE("internal errors have their own exit status", "[verify][cli]") {
+  CHECK(cli::exit_status(Error::Kind::input) == 2);
+  CHECK(cli::exit_status(Error::Kind::simulator) == 3);
+  CHECK(cli::exit_status(Error::Kind::internal) == 4);
 }

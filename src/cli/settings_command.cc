@@ -29,7 +29,8 @@ int run_settings(const std::vector<std::string>& args) {
                        "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"
                        "settings of Table 1: every coefficient as α·n, the dial position with the\n"
                        "load connected, what was left out, and the simulated peak of every signal.\n"
-                       "Overloads are warnings (exit 0); an unreachable coefficient is an error (2).",
+                       "Overloads are warnings (exit 0); an unreachable coefficient is an error (2);\n"
+                       "an internal error exits 4.",
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "settings");

@@ -33,7 +33,8 @@ int run_verify(const std::vector<std::string>& args) {
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
                        "physical units and compares it with the reference model. Exit status 0:\n"
-                       "pass, 1: fail, 2: bad input, 3: ngspice failed (the deck is kept).",
+                       "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
+                       "ends short of the run (the deck is kept), 4: internal error.",
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "verify");

@@ -369,6 +369,7 @@ Vectors run_in(const std::string& executable, const fs::path& dir, const RunLimi
     throw Error("ngspice wrote no rawfile: " + last_words(out, err), kSimulator);
   }
   auto plots = read_rawfile(read_file(dir / "out.raw", std::numeric_limits<std::uintmax_t>::max()));
+  check_complete(plots.back());
   return to_vectors(plots.back());
 }
 
