@@ -107,6 +107,29 @@ TEST_CASE("a key given twice and a line without '=' are refused", "[scene]") {
   CHECK_THAT(error_of("[gear]\ninertia_primary 1\n"), Catch::Contains("bad.ini:2"));
 }
 
+TEST_CASE("a repeated key is named at its repeated line", "[scene]") {
+  CHECK_THAT(error_of(gear_scene("restitution = 1\n\nrestitution = 0.5")),
+             Catch::Contains("bad.ini:7: gear.restitution is given twice (first at line 5)"));
+}
+
+TEST_CASE("a cut-short or empty section header is named with its line", "[scene]") {
+  CHECK_THAT(error_of("# a scene\n[gear\ninertia_primary = 1\n"),
+             Catch::Contains("bad.ini:2: section header '[gear' lacks its closing ']'"));
+  CHECK_THAT(error_of("[gear]\ninertia_primary = 1\n[]\nduration = 1\n"),
+             Catch::Contains("bad.ini:3: empty section header '[]'"));
+  CHECK_THAT(error_of("[gear]\n= 1\n"), Catch::Contains("bad.ini:2: invalid line '= 1'"));
+}
+
+TEST_CASE("a UTF-8 byte-order mark at the start is accepted", "[scene]") {
+  const std::string text = gear_scene("restitution = 0.5");
+  const Scene plain = parse_scene(text, "plain.ini");
+  const Scene marked = parse_scene("\xEF\xBB\xBF" + text, "marked.ini");
+  CHECK(marked.inertia_primary == plain.inertia_primary);
+  CHECK(*marked.restitution == 0.5);
+  CHECK(marked.lines == plain.lines);
+  CHECK_THAT(error_of("\xEF\xBB\xBF" + gear_scene("restitution = 2")), Catch::Contains("bad.ini:5:"));
+}
+
 TEST_CASE("the CLI exits with status 2 on a bad scene and writes nothing", "[scene][cli]") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "gearpatch-scene-test";

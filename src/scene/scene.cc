@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <functional>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
@@ -60,18 +62,28 @@ std::string Scene::where(const std::string& key) const {
 
 namespace {
 
+/// A scene line without its comment and surrounding blanks.
+std::string significant(std::string line) {
+  auto hash = line.find('#');
+  if (hash != std::string::npos) line.erase(hash);
+  auto first = line.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  line.erase(0, first);
+  line.erase(line.find_last_not_of(" \t\r") + 1);
+  return line;
+}
+
+/// The lines each "section.key" appears on, in order.
+using KeyLines = std::map<std::string, std::vector<int>>;
+
 // Boost's parser does not report lines, so we find them ourselves for messages.
-std::map<std::string, int> locate_keys(const std::string& text) {
-  std::map<std::string, int> found;
+KeyLines locate_keys(const std::string& text) {
+  KeyLines found;
   std::istringstream in(text);
   std::string line, section;
   for (int number = 1; std::getline(in, line); ++number) {
-    auto hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos) continue;
-    line.erase(0, first);
-    line.erase(line.find_last_not_of(" \t\r") + 1);
+    line = significant(line);
+    if (line.empty()) continue;
     if (line.front() == '[' && line.back() == ']') {
       section = line.substr(1, line.size() - 2);
       continue;
@@ -79,27 +91,33 @@ std::map<std::string, int> locate_keys(const std::string& text) {
     auto eq = line.find('=');
     std::string key = line.substr(0, eq);
     key.erase(key.find_last_not_of(" \t") + 1);
-    std::string full = section.empty() ? key : section + "." + key;
-    if (!found.count(full)) found[full] = number;
+    found[section.empty() ? key : section + "." + key].push_back(number);
   }
   return found;
 }
 
-int first_line_without_equals(const std::string& text) {
+/// Refuses, with their line, the lines Boost would refuse without one or
+/// misread: a section header cut short, an empty one, a line without '='.
+void check_lines(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
-    auto hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '[') continue;
-    if (line.find('=') == std::string::npos) return number;
+    line = significant(line);
+    if (line.empty()) continue;
+    const std::string where = source + ":" + std::to_string(number) + ": ";
+    if (line.front() == '[') {
+      if (line.back() != ']') throw Error(where + "section header '" + line + "' lacks its closing ']'");
+      if (significant(line.substr(1, line.size() - 2)).empty())
+        throw Error(where + "empty section header '" + line + "': name the section ([gear], [run], ...)");
+    } else if (line.find('=') == std::string::npos || line.front() == '=') {
+      throw Error(where + "invalid line '" + line + "': expected key = value");
+    }
   }
-  return 0;
 }
 
 /// Reads the raw strings of a scene, one per key, rejecting unknown keys.
-std::map<std::string, std::string> read_values(const std::string& text, Scene& scene) {
+std::map<std::string, std::string> read_values(const std::string& text, const KeyLines& key_lines,
+                                               Scene& scene) {
   po::options_description description;
   for (const auto& [key, help] : scene_keys())
     description.add_options()(key.c_str(), po::value<std::string>(), help.c_str());
@@ -108,8 +126,7 @@ std::map<std::string, std::string> read_values(const std::string& text, Scene& s
   try {
     parsed = po::parse_config_file(in, description, true);
   } catch (const po::error& e) {
-    int line = first_line_without_equals(text);
-    throw Error(scene.source + (line ? ":" + std::to_string(line) : "") + ": " + e.what());
+    throw Error(scene.source + ": " + e.what());
   }
   std::map<std::string, std::string> values;
   for (const auto& option : parsed.options) {
@@ -117,8 +134,14 @@ std::map<std::string, std::string> read_values(const std::string& text, Scene& s
     if (option.unregistered)
       throw Error(scene.where(option.string_key) + ": " + option.string_key +
                   ": unknown key (see `gearpatch --help-scene`)");
-    if (values.count(option.string_key))
-      throw Error(scene.where(option.string_key) + ": " + option.string_key + " is given twice");
+    if (values.count(option.string_key)) {
+      // Name the repeated line; the first one is where the key is found.
+      auto lines = key_lines.find(option.string_key);
+      const bool known = lines != key_lines.end() && lines->second.size() > 1;
+      throw Error((known ? scene.source + ":" + std::to_string(lines->second[1]) : scene.where(option.string_key)) +
+                  ": " + option.string_key + " is given twice (first at line " +
+                  std::to_string(scene.lines[option.string_key]) + ")");
+    }
     values[option.string_key] = option.value.empty() ? "" : option.value.front();
   }
   return values;
@@ -237,12 +260,17 @@ void read_machine(const Reader& r, Scene& s) {
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& source) {
+Scene parse_scene(const std::string& file_text, const std::string& source) {
+  // A byte-order mark, as some Windows editors write, is not part of the first line.
+  constexpr std::string_view bom = "\xEF\xBB\xBF";
+  const std::string text = file_text.starts_with(bom) ? file_text.substr(bom.size()) : file_text;
   Scene s;
   s.source = source;
   s.name = std::filesystem::path(source).stem().string();
-  s.lines = locate_keys(text);
-  Reader r(s, read_values(text, s));
+  check_lines(text, source);
+  const KeyLines key_lines = locate_keys(text);
+  for (const auto& [key, lines] : key_lines) s.lines[key] = lines.front();
+  Reader r(s, read_values(text, key_lines, s));
   if (r.has("name")) s.name = r.raw("name");
   read_gear(r, s);
   read_friction_and_drive(r, s);
