@@ -299,6 +299,19 @@ duration = 1
   CHECK_THROWS_WITH(make_patch(stiff, {}), Catch::Contains("alpha11") && Catch::Contains("maxima.contact_twist"));
 }
 
+TEST_CASE("a setting that is not finite is an internal error naming it", "[scaling]") {
+  // The scene's ranges keep this out; the belt catches a profile set in code.
+  Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
+  scene.machine.potentiometer_resistance = 1e-320;
+  try {
+    make_patch(scene, {});
+    FAIL("a NaN setting passed");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::internal);
+    CHECK_THAT(e.what(), Catch::Contains("alpha3 loaded setting = ") && Catch::Contains("nan"));
+  }
+}
+
 TEST_CASE("Automatic β: coefficients, and the machine's speed for a stiff coupling", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.stiffness = 1e6;

@@ -2,6 +2,7 @@
 
 #include <boost/program_options.hpp>
 #include <cmath>
+#include <fmt/format.h>
 #include <filesystem>
 #include <functional>
 #include <sstream>
@@ -44,12 +45,12 @@ const std::map<std::string, std::string>& scene_keys() {
       {"maxima.contact_twist", "override Δφ'm, rad, > 0"},
       {"maxima.twist", "override Δφm, rad, > 0"},
       {"maxima.torque", "override M0m, N·m, > 0"},
-      {"machine.unit", "volts per machine unit, > 0 (default 10)"},
-      {"machine.time_scale", "β (machine time = β·real time), > 0, or auto (default)"},
-      {"machine.integrator_constant", "k0, 1/s at weight 1, > 0 (default 1)"},
-      {"machine.input_resistance", "ohms of a weight-1 input, > 0 (default 1e6)"},
-      {"machine.potentiometer_resistance", "ohms, > 0 (default 1e4)"},
-      {"machine.supply", "± supply volts of the hardware op-amps, > unit (default 15)"},
+      {"machine.unit", "volts per machine unit, 0.1 … 1e3 (default 10)"},
+      {"machine.time_scale", "β (machine time = β·real time), 1e-6 … 1e6, or auto (default)"},
+      {"machine.integrator_constant", "k0, 1/s at weight 1, 1e-3 … 1e6 (default 1)"},
+      {"machine.input_resistance", "ohms of a weight-1 input, 1e3 … 1e9 (default 1e6)"},
+      {"machine.potentiometer_resistance", "ohms, 10 … 1e8 (default 1e4)"},
+      {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
   };
   return keys;
 }
@@ -244,18 +245,52 @@ void read_friction_and_drive(const Reader& r, Scene& s) {
   if (r.has("drive.rated_speed")) s.rated_speed = r.positive("drive.rated_speed");
 }
 
+/// The physical range of a machine key and why: the machine is not simulated
+/// by the reference model, but its values divide and multiply every setting,
+/// so a value no analog computer has would reach the deck as inf or NaN.
+struct MachineRange {
+  const char* key;
+  double least, most;
+  const char* unit;
+  const char* why;
+};
+
+constexpr MachineRange machine_ranges[] = {
+    {"machine.unit", 0.1, 1e3, "V", "analog computers' machine units (±10 V and ±100 V are usual)"},
+    {"machine.integrator_constant", 1e-3, 1e6, "1/s",
+     "analog computers' integrator constants (1, 10, 100 and 1000 /s are usual)"},
+    {"machine.input_resistance", 1e3, 1e9, "ohms", "the input resistors of analog computers (1 MΩ is usual)"},
+    {"machine.potentiometer_resistance", 10, 1e8, "ohms",
+     "coefficient potentiometers (10 kΩ to 100 kΩ are usual)"},
+    {"machine.supply", 0.1, 1e4, "V", "op-amp supplies (±15 V is usual)"},
+    {"machine.time_scale", 1e-6, 1e6, "",
+     "a machine time from a millionth to a million times the real time"},
+};
+
+double machine_value(const Reader& r, const std::string& key, double fallback) {
+  for (const MachineRange& range : machine_ranges) {
+    if (key != range.key) continue;
+    const double value = r.positive(key, fallback);
+    if (value < range.least || value > range.most)
+      r.fail(key, fmt::format("must be in [{:g}, {:g}]{}{}, the range of {}", range.least, range.most,
+                              *range.unit ? " " : "", range.unit, range.why));
+    return value;
+  }
+  throw Error("no range for " + key, Error::Kind::internal);
+}
+
 void read_machine(const Reader& r, Scene& s) {
   MachineProfile& m = s.machine;
-  m.unit_volts = r.positive("machine.unit", m.unit_volts);
-  m.integrator_constant = r.positive("machine.integrator_constant", m.integrator_constant);
-  m.input_resistance = r.positive("machine.input_resistance", m.input_resistance);
-  m.potentiometer_resistance = r.positive("machine.potentiometer_resistance", m.potentiometer_resistance);
-  m.supply_volts = r.positive("machine.supply", m.supply_volts);
+  m.unit_volts = machine_value(r, "machine.unit", m.unit_volts);
+  m.integrator_constant = machine_value(r, "machine.integrator_constant", m.integrator_constant);
+  m.input_resistance = machine_value(r, "machine.input_resistance", m.input_resistance);
+  m.potentiometer_resistance = machine_value(r, "machine.potentiometer_resistance", m.potentiometer_resistance);
+  m.supply_volts = machine_value(r, "machine.supply", m.supply_volts);
   if (m.supply_volts <= m.unit_volts)
     r.fail(r.has("machine.supply") ? "machine.supply" : "machine.unit",
            "the supply must exceed the machine unit");
   if (r.has("machine.time_scale") && r.raw("machine.time_scale") != "auto")
-    m.time_scale = r.positive("machine.time_scale");
+    m.time_scale = machine_value(r, "machine.time_scale", 1);
 }
 
 }  // namespace
