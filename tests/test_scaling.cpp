@@ -312,6 +312,16 @@ TEST_CASE("a setting that is not finite is an internal error naming it", "[scali
   }
 }
 
+TEST_CASE("settings JSON replaces text that is not UTF-8 instead of failing", "[scaling]") {
+  Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
+  scene.name = "gear\xE4";  // a file stem in Latin-1
+  PatchOptions o;
+  o.check_peaks = false;
+  std::string json;
+  REQUIRE_NOTHROW(json = to_json(make_patch(scene, o)));
+  CHECK_THAT(json, Catch::Contains("\"gear\xEF\xBF\xBD\""));
+}
+
 TEST_CASE("Automatic β: coefficients, and the machine's speed for a stiff coupling", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.stiffness = 1e6;

@@ -166,6 +166,14 @@ TEST_CASE("a tiny integrator constant exits 2 instead of printing β = inf", "[s
   fs::remove(scene);
 }
 
+TEST_CASE("a scene name that is not UTF-8 is refused when the scene is read", "[scene]") {
+  CHECK_THAT(error_of("name = gear\xE4\n" + gear_scene("restitution = 1")),
+             Catch::Contains("bad.ini:1: name = gear\xE4: not UTF-8"));
+  CHECK_THAT(error_of("name = \xED\xA0\x80\n" + gear_scene("restitution = 1")), Catch::Contains("not UTF-8"));
+  CHECK(parse_scene("name = Getriebe \xC3\xA4 \xE2\x86\x92 \xF0\x9F\x94\xA7\n" + gear_scene("restitution = 1"), "ok.ini").name ==
+        "Getriebe \xC3\xA4 \xE2\x86\x92 \xF0\x9F\x94\xA7");
+}
+
 TEST_CASE("the CLI exits with status 2 on a bad scene and writes nothing", "[scene][cli]") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / "gearpatch-scene-test";

@@ -260,6 +260,14 @@ TEST_CASE("a trace cut short or without points is a simulator failure, not a ver
   }
 }
 
+TEST_CASE("the verify report as JSON replaces text that is not UTF-8", "[verify]") {
+  verify::VerifyResult r;
+  r.scene = "gear\xE4";
+  std::string json;
+  REQUIRE_NOTHROW(json = verify::to_json(r));
+  CHECK_THAT(json, Catch::Contains("\"gear\xEF\xBF\xBD\""));
+}
+
 TEST_CASE("internal errors have their own exit status", "[verify][cli]") {
   CHECK(cli::exit_status(Error::Kind::input) == 2);
   CHECK(cli::exit_status(Error::Kind::simulator) == 3);

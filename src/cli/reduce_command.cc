@@ -41,7 +41,8 @@ int run_reduce(const std::vector<std::string>& args) {
     nlohmann::json j = {{"stiffness", r.stiffness}, {"damping", r.damping}, {"exact", r.exact},
                         {"worst_response_error", r.worst_response_error},
                         {"frequency_of_worst", r.frequency_of_worst}};
-    write_file_atomically(vm["json"].as<std::string>(), j.dump(2) + "\n");
+    // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
+    write_file_atomically(vm["json"].as<std::string>(), j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   }
   return 0;
 }

@@ -12,6 +12,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/numbers.h"
+#include "common/utf8.h"
 
 namespace gearpatch {
 namespace po = boost::program_options;
@@ -307,6 +308,7 @@ Scene parse_scene(const std::string& file_text, const std::string& source) {
   for (const auto& [key, lines] : key_lines) s.lines[key] = lines.front();
   Reader r(s, read_values(text, key_lines, s));
   if (r.has("name")) s.name = r.raw("name");
+  if (r.has("name") && !is_utf8(s.name)) r.fail("name", "not UTF-8 text (save the file as UTF-8)");
   read_gear(r, s);
   read_friction_and_drive(r, s);
   s.speed_primary = r.number("initial.speed_primary").value_or(0);
