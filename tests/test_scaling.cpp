@@ -17,6 +17,7 @@
 #include "common/error.h"
 #include "scaling/maxima.h"
 #include "scaling/patch.h"
+#include "support.h"
 #include "scene/scene.h"
 
 using namespace gearpatch;
@@ -412,6 +413,27 @@ TEST_CASE("settings JSON has the documented keys", "[scaling]") {
   CHECK(j["unused"][0].contains("reason"));
   CHECK(j["peaks"].contains("Wp"));
   CHECK(to_table(patch).find("alpha10") != std::string::npos);
+}
+
+TEST_CASE("every numeric option must be finite and in range", "[scaling][cli]") {
+  const std::string scene = std::string(GEARPATCH_SOURCE_DIR) + "/scenes/bild5b.ini";
+  const auto refusal = [&](const std::string& arguments) {
+    std::string output;
+    const int status = testing::run_command(std::string(GEARPATCH_BINARY) + " " + arguments, output);
+    CHECK(status == 2);
+    return output;
+  };
+  CHECK_THAT(refusal("simulate " + scene + " --dt inf"), Catch::Contains("--dt = inf: must be a finite number > 0"));
+  CHECK_THAT(refusal("simulate " + scene + " --dt nan"), Catch::Contains("--dt = nan"));
+  CHECK_THAT(refusal("simulate " + scene + " --solver adaptive --rtol 1e-300"),
+             Catch::Contains("--rtol = 1e-300: must be a finite number in [1e-14, 0.1]"));
+  CHECK_THAT(refusal("settings " + scene + " --beta inf"), Catch::Contains("--beta = inf"));
+  CHECK_THAT(refusal("settings " + scene + " --autoscale --headroom inf"), Catch::Contains("--headroom = inf"));
+  CHECK_THAT(refusal("settings " + scene + " --autoscale --headroom -1"), Catch::Contains("--headroom = -1"));
+  CHECK_THAT(refusal("settings " + scene + " --comparator-offset nan"), Catch::Contains("--comparator-offset = nan"));
+  // Refused before ngspice runs: an infinite tolerance would pass any circuit.
+  CHECK_THAT(refusal("verify " + scene + " --tolerance inf"),
+             Catch::Contains("--tolerance = inf: must be a finite number in (0, 1]"));
 }
 
 TEST_CASE("gearpatch settings end to end", "[scaling]") {
