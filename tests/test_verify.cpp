@@ -260,6 +260,35 @@ TEST_CASE("a trace cut short or without points is a simulator failure, not a ver
   }
 }
 
+TEST_CASE("verify exits 3 naming a NaN or a cut-short rawfile of an ngspice that exits 0", "[verify][cli]") {
+  // A stand-in ngspice on PATH: two points of the deck's run, as the test asks.
+  const fs::path dir = temp_file("fake-bin");
+  fs::create_directories(dir);
+  const auto run_with = [&](const std::string& declared_points, const std::string& value, int expected_status) {
+    std::ofstream(dir / "ngspice")
+        << "#!/bin/sh\nstop=$(awk '/^\\.tran/ {print $3}' deck.cir)\n"
+        << "printf 'Title: t\\nPlotname: Transient Analysis\\nFlags: real\\nNo. Variables: 5\\n"
+           "No. Points: " << declared_points << "\\nVariables:\\n\\t0\\ttime\\ttime\\n"
+           "\\t1\\tv(wp)\\tvoltage\\n\\t2\\tv(ws)\\tvoltage\\n\\t3\\tv(x)\\tvoltage\\n\\t4\\tv(m)\\tvoltage\\n"
+           "Values:\\n0\\t0\\n\\t0\\n\\t0\\n\\t0\\n\\t0\\n1\\t%s\\n\\t" << value
+        << "\\n\\t0\\n\\t0\\n\\t0\\n' \"$stop\" > out.raw\nexit 0\n";
+    fs::permissions(dir / "ngspice", fs::perms::owner_all);
+    std::string output;
+    const int status = testing::run_command("PATH='" + dir.string() + "':\"$PATH\" " + GEARPATCH_BINARY + " verify " +
+                                                testing::source_path("scenes/bild5a.ini") + " --keep-deck " +
+                                                (dir / "deck.cir").string(),
+                                            output);
+    CHECK(status == expected_status);
+    return output;
+  };
+  // The stand-in works: its flat complete trace is a dead circuit, a verdict.
+  CHECK_THAT(run_with("2", "0", 1), Catch::Contains("FAIL"));
+  CHECK_THAT(run_with("2", "nan", 3), Catch::Contains("ngspice's output v(wp) is nan at t = "));
+  CHECK_THAT(run_with("3", "0", 3),
+             Catch::Contains("ngspice's output is cut short: its rawfile holds 2 of the 3 points"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("the verify report as JSON replaces text that is not UTF-8", "[verify]") {
   verify::VerifyResult r;
   r.scene = "gear\xE4";
