@@ -245,6 +245,18 @@ TEST_CASE("a crashed ngspice and a missing rawfile are failures", "[spice]") {
   fs::remove_all(silent.parent_path());
 }
 
+TEST_CASE("a rawfile cut short by a full disk is a failure though ngspice exits 0", "[spice]") {
+  // Two of the three points declared: ngspice's writes failed, its exit status did not.
+  fs::path full_disk = fake_ngspice(
+      "printf 'Title: t\\nPlotname: Transient Analysis\\nFlags: real\\nNo. Variables: 2\\n"
+      "No. Points: 3\\nVariables:\\n\\t0\\ttime\\ttime\\n\\t1\\tv(out)\\tvoltage\\n"
+      "Values:\\n0\\t0\\n\\t0\\n1\\t1e-3\\n\\t0.5\\n' > out.raw\nexit 0");
+  std::string message = failure_of(*make_batch_ngspice(full_disk.string()), kRcDeck);
+  CHECK_THAT(message, Catch::StartsWith("ngspice's output is cut short: its rawfile holds 2 of the 3 points"));
+  fs::remove_all(kept_deck(message).parent_path());
+  fs::remove_all(full_disk.parent_path());
+}
+
 TEST_CASE("ngspice console output is classified in ngspice's words", "[spice]") {
   const std::string stats = "Total elapsed time (seconds) = 0.003\n\nTotal DRAM available = 24105.133 MB.\n";
   CHECK_FALSE(diagnose_ngspice_failure("Circuit: rc\n" + stats, "", 0));

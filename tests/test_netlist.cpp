@@ -1,6 +1,7 @@
 // The generated decks: golden files, ngspice runs each of them, and each
 // holds only the blocks its scene needs.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <clocale>
 #include <regex>
@@ -8,6 +9,7 @@
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
 #include "common/atomic_file.h"
+#include "common/error.h"
 #include "scaling/patch.h"
 #include "spice/simulator.h"
 #include "support.h"
@@ -125,6 +127,22 @@ TEST_CASE("each setting is one .param used by the elements it sets", "[netlist]"
     CHECK(count(g.deck, ".ic v(wp)=") == 1);
     CHECK(count(g.deck, ".ic v(ws)=") == 1);
     CHECK(count(g.deck, ".ic v(x)=") == 1);
+  }
+}
+
+TEST_CASE("the deck refuses a setting that is not finite as an internal error", "[netlist]") {
+  const Scene scene = testing::example_scene("bild5b");
+  PatchOptions o;
+  o.check_peaks = false;
+  Circuit c = build_circuit(scene, make_patch(scene, o), Level::ideal);
+  REQUIRE(!c.parameters.empty());
+  c.parameters.front().second = std::nan("");
+  try {
+    render_netlist(c, Level::ideal, scene.machine);
+    FAIL("a NaN setting was written into the deck");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::internal);
+    CHECK_THAT(e.what(), Catch::Contains(".param " + c.parameters.front().first + "=nan"));
   }
 }
 

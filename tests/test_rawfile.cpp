@@ -198,6 +198,28 @@ TEST_CASE("rawfile cut inside a point: the partial last point is dropped", "[spi
   }
 }
 
+TEST_CASE("a plot with fewer points than its header declares is cut short", "[spice]") {
+  using gearpatch::spice::check_complete;
+  for (const bool binary : {true, false}) {
+    INFO((binary ? "binary" : "ASCII"));
+    std::string bytes = binary ? binary_plot(kPoints, 3) : ascii_plot(kPoints, 3);
+    const Plot whole = read_rawfile(bytes).at(0);
+    CHECK(whole.declared_points == 3);
+    CHECK_NOTHROW(check_complete(whole));
+    CHECK_NOTHROW(check_complete(read_rawfile(binary ? binary_plot(kPoints, 0) : ascii_plot(kPoints, 0)).at(0)));
+    bytes.resize(bytes.size() - (binary ? 24 : 46));  // the last point is gone
+    const Plot cut = read_rawfile(bytes).at(0);
+    REQUIRE(cut.points() == 2);
+    try {
+      check_complete(cut);
+      FAIL("a cut-short plot passed as complete");
+    } catch (const Error& e) {
+      CHECK(e.kind() == Error::Kind::simulator);
+      CHECK_THAT(e.what(), Catch::Contains("cut short: its rawfile holds 2 of the 3 points"));
+    }
+  }
+}
+
 TEST_CASE("malformed rawfiles are refused with the place and what was expected", "[spice]") {
   const std::string ascii = ascii_plot(kPoints, 3);
   auto edited = [&](const std::string& from, const std::string& to) {

@@ -3,6 +3,7 @@
 // exact one as its tolerance tightens.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <sys/resource.h>
 
 #include "model/gear_model.h"
 #include "solver/forced_oscillator.h"
@@ -109,4 +110,31 @@ TEST_CASE("the adaptive solver converges as its tolerance tightens", "[solver]")
       previous = error;
     }
   }
+}
+
+namespace {
+
+long peak_resident_kb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
+
+}  // namespace
+
+TEST_CASE("an output grid over the row limit is refused before anything is allocated", "[solver]") {
+  const Scene scene = parse_scene(testing::gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1\n"), "rows.ini");
+  const GearModel model(GearParameters::from_scene(scene));
+  RunSpec spec = RunSpec::from_scene(scene);
+  spec.output_step = scene.duration / (2 * RunSpec::max_rows);  // twice the limit: 2e7 rows
+  const long before = peak_resident_kb();
+  CHECK_THROWS_WITH(simulate(model, initial_state(scene), spec), Catch::Contains("raise run.output_step"));
+  // The samples alone would take 800 MB; a refusal up front takes next to nothing.
+  CHECK(peak_resident_kb() - before < 100'000);
+  // rows() counts the rows the grid emits.
+  spec.output_step = scene.duration / 10;
+  CHECK(spec.rows() == 11);
+  CHECK(simulate(model, initial_state(scene), spec).samples.size() == 11);
+  spec.output_step = INFINITY;
+  CHECK_THROWS_WITH(simulate(model, initial_state(scene), spec), Catch::Contains("must be a finite number > 0"));
 }

@@ -1,6 +1,7 @@
 // verify: the main job, against the real ngspice and against a scripted
 // simulator; it must pass the examples, and it must be able to fail.
 #include <catch2/catch.hpp>
+#include <fmt/format.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -8,10 +9,12 @@
 
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
+#include "cli/command.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
 #include "scaling/patch.h"
+#include "solver/integrate.h"
 #include "spice/scripted_simulator.h"
 #include "support.h"
 #include "verify/report.h"
@@ -212,4 +215,118 @@ TEST_CASE("a scene name and a plot path are drawn as text, never run by gnuplot"
 
   CHECK(gnuplot_string("it's\nnew @x `y`") == "'it''s new @x `y`'");
   CHECK(gnuplot_data_label("a\"b\nEOD") == "a b EOD");
+}
+
+namespace {
+
+/// The vectors of a perfect circuit for `scene`, from a first run on a dead one.
+spice::Vectors perfect_vectors(const Scene& scene) {
+  spice::ScriptedSimulator probe;
+  spice::Vectors flat;
+  flat.data["time"] = {0, make_patch(scene).beta * scene.duration};
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
+  probe.then_return(flat);
+  return perfect_circuit(scene, verify::verify(scene, {}, probe));
+}
+
+/// The message of the simulator Error verify throws on these vectors.
+std::string simulator_failure(const Scene& scene, const spice::Vectors& vectors) {
+  spice::ScriptedSimulator simulator;
+  simulator.then_return(vectors);
+  try {
+    const verify::VerifyResult r = verify::verify(scene, {}, simulator);
+    FAIL("verify gave a verdict (" << (r.passed ? "pass" : "fail") << ") on broken simulator output");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::simulator);
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("NaN or inf in anything verify reads back is a simulator failure", "[verify]") {
+  const Scene scene = testing::example_scene("bild5b");
+  const spice::Vectors perfect = perfect_vectors(scene);
+  const double t100 = perfect.data.at("time")[100];
+  for (const char* vector : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) {
+    spice::Vectors v = perfect;
+    v.data[vector][100] = std::nan("");
+    const std::string message = simulator_failure(scene, v);
+    CHECK_THAT(message, Catch::Contains(std::string("output ") + vector + " is nan") &&
+                            Catch::Contains(fmt::format("t = {:.6g} s", t100)));
+  }
+  spice::Vectors overloaded = perfect;
+  overloaded.data["v(m_n)"] = std::vector<double>(perfect.data.at("time").size(), 0.0);
+  overloaded.data["v(m_n)"][7] = -INFINITY;
+  CHECK_THAT(simulator_failure(scene, overloaded), Catch::Contains("output v(m_n) is -inf"));
+  spice::Vectors bad_time = perfect;
+  bad_time.data["time"][3] = std::nan("");
+  CHECK_THAT(simulator_failure(scene, bad_time), Catch::Contains("output time is nan at point 3"));
+}
+
+TEST_CASE("a trace cut short or without points is a simulator failure, not a verdict", "[verify]") {
+  const Scene scene = testing::example_scene("bild5b");
+  const spice::Vectors perfect = perfect_vectors(scene);
+  spice::Vectors half = perfect;
+  for (auto& [name, values] : half.data) values.resize(values.size() / 2);
+  CHECK_THAT(simulator_failure(scene, half),
+             Catch::Contains("cut short: it ends at t = ") && Catch::Contains("of the 3 s run"));
+  spice::Vectors none = perfect;
+  for (auto& [name, values] : none.data) values.clear();
+  CHECK_THAT(simulator_failure(scene, none), Catch::Contains("cut short: no complete point"));
+  // The interpolation itself refuses an empty trace (it used to read front() of it).
+  const GearModel model(GearParameters::from_scene(scene));
+  const Trajectory reference = simulate(model, initial_state(scene), RunSpec::from_scene(scene));
+  verify::CircuitTrace empty;
+  for (const char* name : {"omega_p", "omega_s", "dphi", "m0"}) empty.signals[name] = {};
+  try {
+    verify::compare(reference, empty, model, {{"omega_p", 1.0}}, scene.duration, 0);
+    FAIL("compared an empty trace");
+  } catch (const Error& e) {
+    CHECK(e.kind() == Error::Kind::internal);
+  }
+}
+
+TEST_CASE("verify exits 3 naming a NaN or a cut-short rawfile of an ngspice that exits 0", "[verify][cli]") {
+  // A stand-in ngspice on PATH: two points of the deck's run, as the test asks.
+  const fs::path dir = temp_file("fake-bin");
+  fs::create_directories(dir);
+  const auto run_with = [&](const std::string& declared_points, const std::string& value, int expected_status) {
+    std::ofstream(dir / "ngspice")
+        << "#!/bin/sh\nstop=$(awk '/^\\.tran/ {print $3}' deck.cir)\n"
+        << "printf 'Title: t\\nPlotname: Transient Analysis\\nFlags: real\\nNo. Variables: 5\\n"
+           "No. Points: " << declared_points << "\\nVariables:\\n\\t0\\ttime\\ttime\\n"
+           "\\t1\\tv(wp)\\tvoltage\\n\\t2\\tv(ws)\\tvoltage\\n\\t3\\tv(x)\\tvoltage\\n\\t4\\tv(m)\\tvoltage\\n"
+           "Values:\\n0\\t0\\n\\t0\\n\\t0\\n\\t0\\n\\t0\\n1\\t%s\\n\\t" << value
+        << "\\n\\t0\\n\\t0\\n\\t0\\n' \"$stop\" > out.raw\nexit 0\n";
+    fs::permissions(dir / "ngspice", fs::perms::owner_all);
+    std::string output;
+    const int status = testing::run_command("PATH='" + dir.string() + "':\"$PATH\" " + GEARPATCH_BINARY + " verify " +
+                                                testing::source_path("scenes/bild5a.ini") + " --keep-deck " +
+                                                (dir / "deck.cir").string(),
+                                            output);
+    CHECK(status == expected_status);
+    return output;
+  };
+  // The stand-in works: its flat complete trace is a dead circuit, a verdict.
+  CHECK_THAT(run_with("2", "0", 1), Catch::Contains("FAIL"));
+  CHECK_THAT(run_with("2", "nan", 3), Catch::Contains("ngspice's output v(wp) is nan at t = "));
+  CHECK_THAT(run_with("3", "0", 3),
+             Catch::Contains("ngspice's output is cut short: its rawfile holds 2 of the 3 points"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the verify report as JSON replaces text that is not UTF-8", "[verify]") {
+  verify::VerifyResult r;
+  r.scene = "gear\xE4";
+  std::string json;
+  REQUIRE_NOTHROW(json = verify::to_json(r));
+  CHECK_THAT(json, Catch::Contains("\"gear\xEF\xBF\xBD\""));
+}
+
+TEST_CASE("internal errors have their own exit status", "[verify][cli]") {
+  CHECK(cli::exit_status(Error::Kind::input) == 2);
+  CHECK(cli::exit_status(Error::Kind::simulator) == 3);
+  CHECK(cli::exit_status(Error::Kind::internal) == 4);
 }

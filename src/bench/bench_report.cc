@@ -190,7 +190,8 @@ std::string to_json(const BenchResult& r) {
                             {"median_pareto", p.median_pareto}});
   j["default_on_pareto_front"] = r.default_on_front;
   j["default_on_median_pareto_front"] = r.default_on_median_front;
-  return j.dump(2) + "\n";
+  // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::string to_markdown(const BenchResult& r, const std::string& plot_path) {

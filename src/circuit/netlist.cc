@@ -1,8 +1,10 @@
 #include "circuit/netlist.h"
 
+#include <cmath>
 #include <fmt/format.h>
 #include <set>
 
+#include "common/error.h"
 #include "common/numbers.h"
 
 namespace gearpatch::circuit {
@@ -27,6 +29,9 @@ std::string parameters(const Circuit& c, Level level) {
   for (const auto& [name, value] : c.parameters) {
     auto dial = c.dial_settings.find(name);
     const double shown = level == Level::hardware && dial != c.dial_settings.end() ? dial->second : value;
+    // A belt behind the scene's ranges: ngspice would read "nan" as 0 or fail late.
+    if (!std::isfinite(shown))
+      throw Error(fmt::format("the deck would set .param {}={}", name, shown), Error::Kind::internal);
     auto weight = c.weights.find(name);
     text += fmt::format(".param {}={}", name, format_number(shown));
     if (weight != c.weights.end()) text += fmt::format("  $ into a weight-{} input", weight->second);
@@ -99,6 +104,9 @@ std::string program(const Circuit& c, const MachineProfile& m) {
 
 std::string analysis(const Circuit& c, const MachineProfile& m, const TransientControl& t) {
   const double stop = c.beta * c.duration;
+  if (!(std::isfinite(stop) && stop > 0))
+    throw Error(fmt::format("the deck would run the transient to {} s (β = {})", stop, c.beta),
+                Error::Kind::internal);
   std::string text = "\n* Initial conditions (integrators in IC mode), machine units x unit volts\n";
   for (const auto& [node, param] : c.initial_conditions)
     text += fmt::format(".ic v({})={{{}*{}}}\n", node, param, format_number(m.unit_volts));

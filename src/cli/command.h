@@ -2,11 +2,14 @@
 #include <string>
 #include <vector>
 
+#include "common/error.h"
+
 namespace gearpatch::cli {
 
 /// One subcommand of `gearpatch`: its name, a one-line summary for the
 /// command list, and the function that runs it on the remaining arguments
-/// and returns the exit status (0 ok, 1 verify failed, 2 bad input, 3 simulator).
+/// and returns the exit status (0 ok, 1 verify failed, 2 bad input, 3 simulator,
+/// 4 internal error).
 struct Command {
   const char* name;
   const char* summary;
@@ -15,6 +18,10 @@ struct Command {
 
 /// The static table of subcommands, in the order `--help` lists them.
 const std::vector<Command>& commands();
+
+/// The exit status of a command that ended in an Error of this kind: 2 bad
+/// input, 3 simulator, 4 internal (also for any other exception).
+int exit_status(Error::Kind kind);
 
 int run_simulate(const std::vector<std::string>& args);
 int run_settings(const std::vector<std::string>& args);

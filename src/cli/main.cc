@@ -25,7 +25,8 @@ void print_usage() {
   std::printf(
       "\n  --help-scene  list every key a scene file may hold\n\n"
       "exit status: 0 success (verify: pass), 1 verify failed, 2 bad input or usage,\n"
-      "3 the simulator failed (missing, aborted, timed out).\n");
+      "3 the simulator failed (missing, aborted, timed out, NaN or cut-short output),\n"
+      "4 internal error (a bug: please report it).\n");
 }
 
 void print_scene_keys() {
@@ -52,11 +53,12 @@ int main(int argc, char** argv) {
     try {
       return command.run({args.begin() + 1, args.end()});
     } catch (const gearpatch::Error& e) {
-      std::fprintf(stderr, "gearpatch %s: %s\n", command.name, e.what());
-      return e.kind() == gearpatch::Error::Kind::simulator ? 3 : 2;
+      const bool internal = e.kind() == gearpatch::Error::Kind::internal;
+      std::fprintf(stderr, "gearpatch %s: %s%s\n", command.name, internal ? "internal error: " : "", e.what());
+      return gearpatch::cli::exit_status(e.kind());
     } catch (const std::exception& e) {
       std::fprintf(stderr, "gearpatch %s: internal error: %s\n", command.name, e.what());
-      return 2;
+      return gearpatch::cli::exit_status(gearpatch::Error::Kind::internal);
     }
   }
   std::fprintf(stderr, "gearpatch: unknown command '%s' (see gearpatch --help)\n", args[0].c_str());

@@ -1,6 +1,9 @@
 #include "cli/options.h"
 
+#include <cmath>
+#include <fmt/format.h>
 #include <iostream>
+#include <limits>
 
 #include "bench/quality.h"
 #include "common/error.h"
@@ -33,6 +36,18 @@ std::string single_file(const po::variables_map& vm, const std::string& command,
   const auto files = vm["scene"].as<std::vector<std::string>>();
   if (files.size() != 1) throw Error(command + " takes one " + what);
   return files.front();
+}
+
+double number_option(const po::variables_map& vm, const std::string& name, double least, double most,
+                     bool above_least) {
+  const double value = vm[name].as<double>();
+  const bool low_ok = above_least ? value > least : value >= least;
+  if (std::isfinite(value) && low_ok && value <= most) return value;
+  const std::string range =
+      most == std::numeric_limits<double>::max()
+          ? fmt::format("{} {:g}", above_least ? ">" : ">=", least)
+          : fmt::format("in {}{:g}, {:g}]", above_least ? "(" : "[", least, most);
+  throw Error(fmt::format("--{} = {:g}: must be a finite number {}", name, value, range));
 }
 
 void add_quality_option(po::options_description& options, const std::string& note) {

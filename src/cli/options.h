@@ -20,6 +20,12 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
 std::string single_file(const po::variables_map& vm, const std::string& command,
                         const std::string& what = "SCENE");
 
+/// A numeric option's value, refused (Error, exit 2) unless it is finite and
+/// in [least, most], or in (least, most] with `above_least`: "--dt = inf: must
+/// be a finite number > 0". Infinity or NaN would pass a plain "> 0" check.
+double number_option(const po::variables_map& vm, const std::string& name, double least, double most,
+                     bool above_least = false);
+
 /// Adds --quality, the ngspice accuracy preset of the commands that write or
 /// run a deck, with each preset's measured error and time in its help.
 void add_quality_option(po::options_description& options, const std::string& note = "");

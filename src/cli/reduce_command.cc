@@ -43,7 +43,8 @@ int run_reduce(const std::vector<std::string>& args) {
     nlohmann::json j = {{"stiffness", r.stiffness}, {"damping", r.damping}, {"exact", r.exact},
                         {"worst_response_error", r.worst_response_error},
                         {"frequency_of_worst", r.frequency_of_worst}};
-    outputs.stage("--json", j.dump(2) + "\n");
+    // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
+    outputs.stage("--json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
     outputs.commit();
   }
   return 0;

@@ -14,22 +14,23 @@ int run_settings(const std::vector<std::string>& args) {
   options.add_options()
       ("json", "write JSON instead of the table")
       ("out,o", po::value<std::string>(), "write to FILE instead of stdout")
-      ("beta", po::value<double>(), "time scale β (machine time = β·real time); default: the "
+      ("beta", po::value<double>(), "time scale β (machine time = β·real time), 1e-6 … 1e6; default: the "
        "scene's machine.time_scale, else chosen automatically")
       ("autoscale", "rescale every maximum from the simulated peak plus --headroom")
-      ("headroom", po::value<double>()->default_value(0.1, "0.1"), "autoscale headroom (0.1 = 10 %)")
+      ("headroom", po::value<double>()->default_value(0.1, "0.1"), "autoscale headroom, 0 … 10 (0.1 = 10 %)")
       ("no-check", "skip the simulation that checks every peak against its scale")
       ("exact-maxima", "keep the estimated speed maxima as computed instead of rounding them "
        "up to 1, 2, 5 × 10^n")
       ("comparator-offset", po::value<double>()->default_value(5e-3, "0.005"),
-       "comparator offsets δ1, δ2 in machine units: above the comparators' hysteresis and the "
+       "comparator offsets δ1, δ2 in machine units, (0, 0.5]: above the comparators' hysteresis and the "
        "op-amps' zero errors (the ideal netlist uses 1e-5)");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
                        "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"
                        "settings of Table 1: every coefficient as α·n, the dial position with the\n"
                        "load connected, what was left out, and the simulated peak of every signal.\n"
-                       "Overloads are warnings (exit 0); an unreachable coefficient is an error (2).",
+                       "Overloads are warnings (exit 0); an unreachable coefficient is an error (2);\n"
+                       "an internal error exits 4.",
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "settings");
@@ -39,10 +40,10 @@ int run_settings(const std::vector<std::string>& args) {
   o.autoscale = vm.count("autoscale") > 0;
   o.check_peaks = vm.count("no-check") == 0;
   if (o.autoscale && !o.check_peaks) throw Error("--autoscale needs the simulation; drop --no-check");
-  o.headroom = vm["headroom"].as<double>();
+  o.headroom = number_option(vm, "headroom", 0, 10);  // up to 1000 %
   o.round_speeds = vm.count("exact-maxima") == 0;
-  o.comparator_offset = vm["comparator-offset"].as<double>();
-  if (vm.count("beta")) o.beta = vm["beta"].as<double>();
+  o.comparator_offset = number_option(vm, "comparator-offset", 0, 0.5, true);  // in MU, below half the unit
+  if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
   const Patch patch = make_patch(load_scene(file), o);
   const std::string text = vm.count("json") ? to_json(patch) : to_table(patch);
   outputs.stage("--out", text);

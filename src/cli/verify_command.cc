@@ -19,7 +19,7 @@ int run_verify(const std::vector<std::string>& args) {
   options.add_options()
       ("level", po::value<std::string>()->default_value("ideal"), "ideal or hardware (see netlist --help)")
       ("tolerance", po::value<double>(),
-       fmt::format("pass if every signal's maximum error is within this fraction of its full scale, "
+       fmt::format("pass if every signal's maximum error is within this fraction of its full scale, (0, 1], "
                    "and impact times within this fraction of the run (default {} ideal, {} hardware)",
                    verify::default_tolerance(circuit::Level::ideal),
                    verify::default_tolerance(circuit::Level::hardware)).c_str())
@@ -36,16 +36,15 @@ int run_verify(const std::vector<std::string>& args) {
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
                        "physical units and compares it with the reference model. Exit status 0:\n"
-                       "pass, 1: fail, 2: bad input, 3: ngspice failed (the deck is kept).",
+                       "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
+                       "ends short of the run (the deck is kept), 4: internal error.",
                        options, vm))
     return 0;
   const std::string file = single_file(vm, "verify");
   verify::VerifyOptions o;
   o.level = circuit::parse_level(vm["level"].as<std::string>());
-  if (vm.count("tolerance")) {
-    o.tolerance = vm["tolerance"].as<double>();
-    if (!(*o.tolerance > 0)) throw Error("--tolerance must be > 0");
-  }
+  // Beyond the full scale a tolerance passes any circuit.
+  if (vm.count("tolerance")) o.tolerance = number_option(vm, "tolerance", 0, 1, true);
   o.autoscale = vm.count("autoscale") > 0;
   o.transient = chosen_quality(vm);
   if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());

@@ -12,6 +12,7 @@ class Error : public std::runtime_error {
   enum class Kind {
     input,      ///< bad scene, option or deck: exit status 2
     simulator,  ///< ngspice missing, aborted, timed out, unreadable output: exit 3
+    internal,   ///< a value the program computed is impossible (a bug, not the input): exit 4
   };
   explicit Error(const std::string& message, Kind kind = Kind::input)
       : std::runtime_error(message), kind_(kind) {}

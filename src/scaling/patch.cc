@@ -240,6 +240,21 @@ void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1&
     }
 }
 
+/// A belt behind the scene's ranges: a setting that is not a finite number is
+/// a bug in the scaling, never something to write into a deck.
+void check_finite(const Patch& patch) {
+  auto finite = [](double value, const std::string& what) {
+    if (!std::isfinite(value))
+      throw Error(fmt::format("the patch computed {} = {}", what, value), Error::Kind::internal);
+  };
+  finite(patch.beta, "β");
+  for (const Potentiometer& pot : patch.potentiometers) {
+    finite(pot.coefficient, pot.name);
+    finite(pot.setting, pot.name + " setting");
+    finite(pot.loaded_setting, pot.name + " loaded setting");
+  }
+}
+
 }  // namespace
 
 Patch make_patch(const Scene& s, const PatchOptions& o) {
@@ -274,6 +289,7 @@ Patch make_patch(const Scene& s, const PatchOptions& o) {
   std::stable_sort(patch.unused.begin(), patch.unused.end(),
                    [](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
   add_notes(s, p, o, t, patch);
+  check_finite(patch);
   return patch;
 }
 

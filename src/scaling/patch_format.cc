@@ -45,7 +45,8 @@ std::string to_json(const Patch& patch) {
   j["a_priori_peaks"] = patch.a_priori_peaks;
   j["warnings"] = patch.warnings;
   j["notes"] = patch.notes;
-  return j.dump(2) + "\n";
+  // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 namespace {

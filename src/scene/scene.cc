@@ -2,13 +2,17 @@
 
 #include <boost/program_options.hpp>
 #include <cmath>
+#include <fmt/format.h>
 #include <filesystem>
 #include <functional>
 #include <sstream>
+#include <string_view>
+#include <vector>
 
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/numbers.h"
+#include "common/utf8.h"
 
 namespace gearpatch {
 namespace po = boost::program_options;
@@ -42,12 +46,12 @@ const std::map<std::string, std::string>& scene_keys() {
       {"maxima.contact_twist", "override Δφ'm, rad, > 0"},
       {"maxima.twist", "override Δφm, rad, > 0"},
       {"maxima.torque", "override M0m, N·m, > 0"},
-      {"machine.unit", "volts per machine unit, > 0 (default 10)"},
-      {"machine.time_scale", "β (machine time = β·real time), > 0, or auto (default)"},
-      {"machine.integrator_constant", "k0, 1/s at weight 1, > 0 (default 1)"},
-      {"machine.input_resistance", "ohms of a weight-1 input, > 0 (default 1e6)"},
-      {"machine.potentiometer_resistance", "ohms, > 0 (default 1e4)"},
-      {"machine.supply", "± supply volts of the hardware op-amps, > unit (default 15)"},
+      {"machine.unit", "volts per machine unit, 0.1 … 1e3 (default 10)"},
+      {"machine.time_scale", "β (machine time = β·real time), 1e-6 … 1e6, or auto (default)"},
+      {"machine.integrator_constant", "k0, 1/s at weight 1, 1e-3 … 1e6 (default 1)"},
+      {"machine.input_resistance", "ohms of a weight-1 input, 1e3 … 1e9 (default 1e6)"},
+      {"machine.potentiometer_resistance", "ohms, 10 … 1e8 (default 1e4)"},
+      {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
   };
   return keys;
 }
@@ -60,18 +64,28 @@ std::string Scene::where(const std::string& key) const {
 
 namespace {
 
+/// A scene line without its comment and surrounding blanks.
+std::string significant(std::string line) {
+  auto hash = line.find('#');
+  if (hash != std::string::npos) line.erase(hash);
+  auto first = line.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return "";
+  line.erase(0, first);
+  line.erase(line.find_last_not_of(" \t\r") + 1);
+  return line;
+}
+
+/// The lines each "section.key" appears on, in order.
+using KeyLines = std::map<std::string, std::vector<int>>;
+
 // Boost's parser does not report lines, so we find them ourselves for messages.
-std::map<std::string, int> locate_keys(const std::string& text) {
-  std::map<std::string, int> found;
+KeyLines locate_keys(const std::string& text) {
+  KeyLines found;
   std::istringstream in(text);
   std::string line, section;
   for (int number = 1; std::getline(in, line); ++number) {
-    auto hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos) continue;
-    line.erase(0, first);
-    line.erase(line.find_last_not_of(" \t\r") + 1);
+    line = significant(line);
+    if (line.empty()) continue;
     if (line.front() == '[' && line.back() == ']') {
       section = line.substr(1, line.size() - 2);
       continue;
@@ -79,27 +93,33 @@ std::map<std::string, int> locate_keys(const std::string& text) {
     auto eq = line.find('=');
     std::string key = line.substr(0, eq);
     key.erase(key.find_last_not_of(" \t") + 1);
-    std::string full = section.empty() ? key : section + "." + key;
-    if (!found.count(full)) found[full] = number;
+    found[section.empty() ? key : section + "." + key].push_back(number);
   }
   return found;
 }
 
-int first_line_without_equals(const std::string& text) {
+/// Refuses, with their line, the lines Boost would refuse without one or
+/// misread: a section header cut short, an empty one, a line without '='.
+void check_lines(const std::string& text, const std::string& source) {
   std::istringstream in(text);
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
-    auto hash = line.find('#');
-    if (hash != std::string::npos) line.erase(hash);
-    auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '[') continue;
-    if (line.find('=') == std::string::npos) return number;
+    line = significant(line);
+    if (line.empty()) continue;
+    const std::string where = source + ":" + std::to_string(number) + ": ";
+    if (line.front() == '[') {
+      if (line.back() != ']') throw Error(where + "section header '" + line + "' lacks its closing ']'");
+      if (significant(line.substr(1, line.size() - 2)).empty())
+        throw Error(where + "empty section header '" + line + "': name the section ([gear], [run], ...)");
+    } else if (line.find('=') == std::string::npos || line.front() == '=') {
+      throw Error(where + "invalid line '" + line + "': expected key = value");
+    }
   }
-  return 0;
 }
 
 /// Reads the raw strings of a scene, one per key, rejecting unknown keys.
-std::map<std::string, std::string> read_values(const std::string& text, Scene& scene) {
+std::map<std::string, std::string> read_values(const std::string& text, const KeyLines& key_lines,
+                                               Scene& scene) {
   po::options_description description;
   for (const auto& [key, help] : scene_keys())
     description.add_options()(key.c_str(), po::value<std::string>(), help.c_str());
@@ -108,8 +128,7 @@ std::map<std::string, std::string> read_values(const std::string& text, Scene& s
   try {
     parsed = po::parse_config_file(in, description, true);
   } catch (const po::error& e) {
-    int line = first_line_without_equals(text);
-    throw Error(scene.source + (line ? ":" + std::to_string(line) : "") + ": " + e.what());
+    throw Error(scene.source + ": " + e.what());
   }
   std::map<std::string, std::string> values;
   for (const auto& option : parsed.options) {
@@ -117,8 +136,14 @@ std::map<std::string, std::string> read_values(const std::string& text, Scene& s
     if (option.unregistered)
       throw Error(scene.where(option.string_key) + ": " + option.string_key +
                   ": unknown key (see `gearpatch --help-scene`)");
-    if (values.count(option.string_key))
-      throw Error(scene.where(option.string_key) + ": " + option.string_key + " is given twice");
+    if (values.count(option.string_key)) {
+      // Name the repeated line; the first one is where the key is found.
+      auto lines = key_lines.find(option.string_key);
+      const bool known = lines != key_lines.end() && lines->second.size() > 1;
+      throw Error((known ? scene.source + ":" + std::to_string(lines->second[1]) : scene.where(option.string_key)) +
+                  ": " + option.string_key + " is given twice (first at line " +
+                  std::to_string(scene.lines[option.string_key]) + ")");
+    }
     values[option.string_key] = option.value.empty() ? "" : option.value.front();
   }
   return values;
@@ -221,29 +246,69 @@ void read_friction_and_drive(const Reader& r, Scene& s) {
   if (r.has("drive.rated_speed")) s.rated_speed = r.positive("drive.rated_speed");
 }
 
+/// The physical range of a machine key and why: the machine is not simulated
+/// by the reference model, but its values divide and multiply every setting,
+/// so a value no analog computer has would reach the deck as inf or NaN.
+struct MachineRange {
+  const char* key;
+  double least, most;
+  const char* unit;
+  const char* why;
+};
+
+constexpr MachineRange machine_ranges[] = {
+    {"machine.unit", 0.1, 1e3, "V", "analog computers' machine units (±10 V and ±100 V are usual)"},
+    {"machine.integrator_constant", 1e-3, 1e6, "1/s",
+     "analog computers' integrator constants (1, 10, 100 and 1000 /s are usual)"},
+    {"machine.input_resistance", 1e3, 1e9, "ohms", "the input resistors of analog computers (1 MΩ is usual)"},
+    {"machine.potentiometer_resistance", 10, 1e8, "ohms",
+     "coefficient potentiometers (10 kΩ to 100 kΩ are usual)"},
+    {"machine.supply", 0.1, 1e4, "V", "op-amp supplies (±15 V is usual)"},
+    {"machine.time_scale", 1e-6, 1e6, "",
+     "a machine time from a millionth to a million times the real time"},
+};
+
+double machine_value(const Reader& r, const std::string& key, double fallback) {
+  for (const MachineRange& range : machine_ranges) {
+    if (key != range.key) continue;
+    const double value = r.positive(key, fallback);
+    if (value < range.least || value > range.most)
+      r.fail(key, fmt::format("must be in [{:g}, {:g}]{}{}, the range of {}", range.least, range.most,
+                              *range.unit ? " " : "", range.unit, range.why));
+    return value;
+  }
+  throw Error("no range for " + key, Error::Kind::internal);
+}
+
 void read_machine(const Reader& r, Scene& s) {
   MachineProfile& m = s.machine;
-  m.unit_volts = r.positive("machine.unit", m.unit_volts);
-  m.integrator_constant = r.positive("machine.integrator_constant", m.integrator_constant);
-  m.input_resistance = r.positive("machine.input_resistance", m.input_resistance);
-  m.potentiometer_resistance = r.positive("machine.potentiometer_resistance", m.potentiometer_resistance);
-  m.supply_volts = r.positive("machine.supply", m.supply_volts);
+  m.unit_volts = machine_value(r, "machine.unit", m.unit_volts);
+  m.integrator_constant = machine_value(r, "machine.integrator_constant", m.integrator_constant);
+  m.input_resistance = machine_value(r, "machine.input_resistance", m.input_resistance);
+  m.potentiometer_resistance = machine_value(r, "machine.potentiometer_resistance", m.potentiometer_resistance);
+  m.supply_volts = machine_value(r, "machine.supply", m.supply_volts);
   if (m.supply_volts <= m.unit_volts)
     r.fail(r.has("machine.supply") ? "machine.supply" : "machine.unit",
            "the supply must exceed the machine unit");
   if (r.has("machine.time_scale") && r.raw("machine.time_scale") != "auto")
-    m.time_scale = r.positive("machine.time_scale");
+    m.time_scale = machine_value(r, "machine.time_scale", 1);
 }
 
 }  // namespace
 
-Scene parse_scene(const std::string& text, const std::string& source) {
+Scene parse_scene(const std::string& file_text, const std::string& source) {
+  // A byte-order mark, as some Windows editors write, is not part of the first line.
+  constexpr std::string_view bom = "\xEF\xBB\xBF";
+  const std::string text = file_text.starts_with(bom) ? file_text.substr(bom.size()) : file_text;
   Scene s;
   s.source = source;
   s.name = std::filesystem::path(source).stem().string();
-  s.lines = locate_keys(text);
-  Reader r(s, read_values(text, s));
+  check_lines(text, source);
+  const KeyLines key_lines = locate_keys(text);
+  for (const auto& [key, lines] : key_lines) s.lines[key] = lines.front();
+  Reader r(s, read_values(text, key_lines, s));
   if (r.has("name")) s.name = r.raw("name");
+  if (r.has("name") && !is_utf8(s.name)) r.fail("name", "not UTF-8 text (save the file as UTF-8)");
   read_gear(r, s);
   read_friction_and_drive(r, s);
   s.speed_primary = r.number("initial.speed_primary").value_or(0);

@@ -17,7 +17,7 @@ class OutputGrid {
  public:
   OutputGrid(const RunSpec& spec)
       : dt_(spec.output_step), end_(spec.duration),
-        last_(static_cast<long>(std::ceil(spec.duration / spec.output_step - 1e-9))) {}
+        last_(static_cast<long>(spec.rows()) - 1) {}
 
   template <class StateAt>
   void emit_through(double b, const Mode& mode, StateAt&& state_at, Observer& observer) {
@@ -207,12 +207,7 @@ class StepBudget {
 
 void integrate(const GearModel& model, Stepper& stepper, GearState state, const RunSpec& spec,
                Observer& observer) {
-  constexpr double most_rows = 1e8;
-  if (!(spec.output_step > 0) || !(spec.duration / spec.output_step <= most_rows))
-    throw Error(fmt::format("an output step of {:g} s gives {:.3g} rows over the {:g} s run, more "
-                            "than the {:g} a run may write: raise run.output_step (or --dt)",
-                            spec.output_step, spec.duration / spec.output_step, spec.duration,
-                            most_rows));
+  check_output_grid(spec);
   OutputGrid grid(spec);
   Mode mode = model.initial_mode(state);
   double t = 0;
@@ -242,6 +237,16 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
   grid.emit_through(spec.duration, mode, [&](double) { return state; }, observer);
 }
 
+void check_output_grid(const RunSpec& spec) {
+  if (!(std::isfinite(spec.output_step) && spec.output_step > 0))
+    throw Error(fmt::format("an output step of {} s: must be a finite number > 0", spec.output_step));
+  if (!(spec.rows() <= RunSpec::max_rows))
+    throw Error(fmt::format("an output step of {:g} s gives {:.3g} rows over the {:g} s run, more "
+                            "than the {:g} a run may write (about 130 bytes each in memory): raise "
+                            "run.output_step (or --dt)",
+                            spec.output_step, spec.rows(), spec.duration, RunSpec::max_rows));
+}
+
 RunSpec RunSpec::from_scene(const Scene& scene) {
   RunSpec spec;
   spec.duration = scene.duration;
@@ -262,7 +267,9 @@ SolverKind parse_solver(const std::string& name) {
 Trajectory simulate(const GearModel& model, const GearState& initial, const RunSpec& spec,
                     SolverKind solver, double tolerance) {
   auto stepper = solver == SolverKind::exact ? make_exact_stepper() : make_adaptive_stepper(tolerance);
+  check_output_grid(spec);  // before the samples are reserved
   Trajectory trajectory;
+  trajectory.samples.reserve(static_cast<std::size_t>(spec.rows()));
   TrajectoryRecorder recorder(model, trajectory);
   integrate(model, *stepper, initial, spec, recorder);
   return trajectory;

@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -18,9 +19,20 @@ struct RunSpec {
   std::size_t max_events = 5'000'000;
   std::size_t max_steps = 100'000'000;  ///< intervals the segments are walked in
 
+  /// The most output rows a run may have: a row costs about 130 bytes on its
+  /// way to a CSV (the sample and its text), so 1e7 rows take 1.3 GB.
+  static constexpr double max_rows = 1e7;
+  /// Rows of the output grid t_k = min(k·output_step, duration), as a double
+  /// so that a tiny step cannot overflow the count.
+  double rows() const { return std::ceil(duration / output_step - 1e-9) + 1; }
+
   /// The scene's duration and output step (default: 2000 intervals).
   static RunSpec from_scene(const Scene& scene);
 };
+
+/// Throws Error (input) unless the output step is finite and positive and the
+/// grid within RunSpec::max_rows: checked before anything is allocated for it.
+void check_output_grid(const RunSpec& spec);
 
 /// The scene's initial speeds and twist.
 GearState initial_state(const Scene& scene);

@@ -190,6 +190,7 @@ Vectors run_in(const std::string& executable, const ScratchDir& dir, const RunLi
     throw Error("ngspice wrote no rawfile: " + last_words(out, err), kSimulator);
   }
   auto plots = read_rawfile(read_tail(dir / "out.raw", std::numeric_limits<std::uintmax_t>::max()));
+  check_complete(plots.back());
   return to_vectors(plots.back());
 }
 

@@ -140,6 +140,7 @@ bool apply_header_line(Cursor& c, Header& h, const std::string& key, std::string
     h.variable_count = parse_count(c, "No. Variables", value);
   } else if (key == "no. points") {
     h.declared_points = parse_count(c, "No. Points", value);
+    h.plot.declared_points = h.declared_points;
   } else if (key == "variables") {
     read_variables(c, h);
   } else if (key == "binary" || key == "values") {
@@ -240,6 +241,13 @@ std::vector<Plot> read_rawfile(std::string_view bytes) {
   }
   if (plots.empty()) throw Error("rawfile is empty", Error::Kind::simulator);
   return plots;
+}
+
+void check_complete(const Plot& plot) {
+  if (plot.points() < plot.declared_points)
+    throw Error(fmt::format("ngspice's output is cut short: its rawfile holds {} of the {} points the "
+                            "header declares (a full disk?)", plot.points(), plot.declared_points),
+                Error::Kind::simulator);
 }
 
 }  // namespace gearpatch::spice

@@ -21,6 +21,7 @@ struct Plot {
   std::string flags;  ///< the "Flags:" field as written ("real", "real unpadded")
   std::vector<RawVariable> variables;
   std::vector<std::vector<double>> columns;  ///< columns[i] holds variables[i]
+  std::size_t declared_points = 0;  ///< the header's "No. Points:"; 0 if never patched in
   std::size_t points() const { return columns.empty() ? 0 : columns.front().size(); }
 };
 
@@ -29,5 +30,10 @@ struct Plot {
 /// complete points present. Complex data and anything malformed throw
 /// gearpatch::Error of kind simulator naming the line or byte offset.
 std::vector<Plot> read_rawfile(std::string_view bytes);
+
+/// Throws Error of kind simulator when a plot holds fewer points than its
+/// header declares: ngspice's output was cut short (on a full disk ngspice
+/// still exits 0), and comparing its start as the whole run is a false verdict.
+void check_complete(const Plot& plot);
 
 }  // namespace gearpatch::spice

@@ -2,13 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fmt/format.h>
+
+#include "common/error.h"
 
 namespace gearpatch::verify {
 namespace {
 
-/// y(t) linearly interpolated at the times `at` (held constant outside).
+/// y(t) linearly interpolated at the times `at` (held constant outside). A
+/// trace without points has nothing to interpolate: verify refuses such
+/// simulator output first, so reaching here with one is a bug.
 std::vector<double> interpolate(const std::vector<double>& t, const std::vector<double>& y,
                                 const std::vector<double>& at) {
+  if (t.empty() || t.size() != y.size())
+    throw Error(fmt::format("interpolating a trace of {} times and {} values", t.size(), y.size()),
+                Error::Kind::internal);
   std::vector<double> out;
   out.reserve(at.size());
   for (double x : at) {

@@ -76,7 +76,8 @@ std::string to_json(const VerifyResult& r) {
   for (const auto& o : r.overloads) j["overloads"].push_back({{"node", o.node}, {"t", o.t}, {"value", o.value}});
   j["failures"] = r.failures;
   j["diagnosis"] = r.diagnosis;
-  return j.dump(2) + "\n";
+  // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
+  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 std::string plot_image(const VerifyResult& r, const std::string& format) {

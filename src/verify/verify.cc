@@ -7,9 +7,10 @@
 #include "circuit/circuit.h"
 #include "model/gear_model.h"
 #include "scaling/patch.h"
-#include "verify/diagnosis.h"
 #include "scene/scene.h"
 #include "solver/integrate.h"
+#include "verify/diagnosis.h"
+#include "verify/trace_check.h"
 
 namespace gearpatch::verify {
 
@@ -59,6 +60,7 @@ VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Sim
   const auto start = std::chrono::steady_clock::now();
   const spice::Vectors vectors = simulator.run(deck, options.limits);
   r.ngspice_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  check_simulator_output(vectors, circuit);
 
   const GearModel model(GearParameters::from_scene(scene));
   RunSpec spec = RunSpec::from_scene(scene);
