@@ -26,8 +26,8 @@ Generated generate(const Scene& scene, Level level) {
   PatchOptions options;
   options.check_peaks = false;
   options.comparator_offset = comparator_offset(level);
-  Circuit c = build_circuit(scene, make_patch(scene, options), level);
-  std::string deck = render_netlist(c, level, scene.machine);
+  Circuit c = build_circuit(make_patch(scene, options), level);
+  std::string deck = render_netlist(c);
   return {std::move(c), std::move(deck)};
 }
 

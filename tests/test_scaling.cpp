@@ -17,7 +17,8 @@
 #include "common/error.h"
 #include "scaling/maxima.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
+#include "support.h"
 
 using namespace gearpatch;
 
@@ -414,4 +415,23 @@ TEST_CASE("gearpatch settings end to end", "[scaling]") {
     CHECK(fraction.get<double>() <= 1.0);
   }
   std::filesystem::remove(out);
+}
+
+TEST_CASE("a scaling refusal names the scene file and the line of the key to change", "[scaling]") {
+  // alpha11 beyond every weight: the line of the backlash to make smaller.
+  const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
+  CHECK_THROWS_WITH(make_patch(load_scene(wide)), Catch::StartsWith(wide + ":13: alpha11 = "));
+  // A twist maximum below the half backlash: the line of the override.
+  const Scene bad = parse_scene(testing::gear_scene("restitution = 0.5\nbacklash = 1",
+                                                    "[initial]\nspeed_primary = 1\n[maxima]\ntwist = 0.1"),
+                                "bad-maxima.ini");
+  CHECK_THROWS_WITH(make_patch(bad), Catch::StartsWith("bad-maxima.ini:10: twist maximum"));
+  // Below the scene the error knows no file, only the key it is about.
+  try {
+    make_patch(scaling_input(bad));
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.scene_key() == std::optional<std::string>("maxima.twist"));
+    CHECK_THAT(e.what(), Catch::StartsWith("twist maximum"));
+  }
 }

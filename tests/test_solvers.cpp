@@ -31,8 +31,8 @@ double scaled_difference(const Trajectory& reference, const Trajectory& other) {
 
 Trajectory run_example(const std::string& name, SolverKind solver, double tolerance = 1e-10) {
   const Scene scene = testing::example_scene(name);
-  const GearModel model(GearParameters::from_scene(scene));
-  return simulate(model, initial_state(scene), RunSpec::from_scene(scene), solver, tolerance);
+  const GearModel model(gear_parameters(scene));
+  return simulate(model, initial_state(scene), run_spec(scene), solver, tolerance);
 }
 
 }  // namespace

@@ -29,7 +29,7 @@ std::string generated_deck(const Scene& scene, circuit::Level level) {
   PatchOptions o;
   o.check_peaks = false;
   o.comparator_offset = circuit::comparator_offset(level);
-  return circuit::render_netlist(circuit::build_circuit(scene, make_patch(scene, o), level), level, scene.machine);
+  return circuit::render_netlist(circuit::build_circuit(make_patch(scene, o), level));
 }
 
 /// Machine voltages a perfect circuit would give: the reference, scaled.
@@ -106,6 +106,13 @@ TEST_CASE("verify fails when one potentiometer is off by 20 %", "[verify][ngspic
                                           output);
   CHECK(status == 1);
   CHECK_THAT(output, Catch::Contains("FAIL") && Catch::Contains("% of full scale at t ="));
+}
+
+TEST_CASE("verify names the scene file and line of a scaling refusal, before any simulator run", "[verify]") {
+  const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
+  spice::ScriptedSimulator never;
+  CHECK_THROWS_WITH(verify::verify(load_scene(wide), {}, never), Catch::StartsWith(wide + ":13: alpha11 = "));
+  CHECK(never.decks().empty());
 }
 
 TEST_CASE("the scripted simulator stands in for ngspice", "[verify]") {

@@ -14,7 +14,7 @@
 #include "common/numbers.h"
 #include "model/gear_model.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 #include "verify/verify.h"
 
@@ -50,9 +50,9 @@ Point failed_point(Point p, const std::string& why) {
 
 void measure_reference(const Scene& scene, const BenchOptions& o, const std::string& where,
                        std::vector<Point>& points) {
-  const GearModel model(GearParameters::from_scene(scene));
+  const GearModel model(gear_parameters(scene));
   const GearState initial = initial_state(scene);
-  const RunSpec grid = RunSpec::from_scene(scene);
+  const RunSpec grid = run_spec(scene);
   RunSpec coarse = grid;
   coarse.output_step = scene.duration;  // time the solver, not the output grid
   const auto scales = full_scales(scene);
@@ -201,7 +201,7 @@ std::vector<Knob> select_knobs(const std::vector<Knob>& knobs, const std::vector
 std::array<double, 4> full_scales(const Scene& scene) {
   PatchOptions po;
   po.comparator_offset = circuit::comparator_offset(circuit::Level::ideal);
-  const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, po), circuit::Level::ideal);
+  const circuit::Circuit c = circuit::build_circuit(make_patch(scene, po), circuit::Level::ideal);
   return {c.probes.at("omega_p").full_scale, c.probes.at("omega_s").full_scale,
           c.probes.at("dphi").full_scale, c.probes.at("m0").full_scale};
 }

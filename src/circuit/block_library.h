@@ -3,7 +3,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/machine.h"
+#include "machine/machine_profile.h"
 
 namespace gearpatch::circuit {
 

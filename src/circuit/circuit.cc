@@ -6,7 +6,6 @@
 
 #include "common/error.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
 
 namespace gearpatch::circuit {
 
@@ -15,11 +14,12 @@ namespace {
 /// Builds the circuit block by block; each add_* method is one part of Bild 4.
 class Builder {
  public:
-  Builder(const Scene& scene, const Patch& patch, Level level)
-      : scene_(scene), patch_(patch), level_(level) {
-    c_.scene = scene.name;
+  Builder(const Patch& patch, Level level) : patch_(patch), level_(level) {
+    c_.scene = patch.scene;
+    c_.level = level;
+    c_.machine = patch.machine;
     c_.beta = patch.beta;
-    c_.duration = scene.duration;
+    c_.duration = patch.duration;
   }
 
   Circuit build() {
@@ -72,9 +72,9 @@ class Builder {
     if (has("alpha_lock")) c_.parameters.emplace_back("delta2", patch_.delta2);
     // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
     const Maxima& m = patch_.maxima;
-    if (has("alpha6")) c_.parameters.emplace_back("alpha6", scene_.speed_primary / m.speed_primary);
-    if (has("alpha7")) c_.parameters.emplace_back("alpha7", scene_.speed_secondary / m.speed_secondary);
-    if (has("alpha12")) c_.parameters.emplace_back("alpha12", scene_.twist / m.twist);
+    if (has("alpha6")) c_.parameters.emplace_back("alpha6", patch_.initial.omega_p / m.speed_primary);
+    if (has("alpha7")) c_.parameters.emplace_back("alpha7", patch_.initial.omega_s / m.speed_secondary);
+    if (has("alpha12")) c_.parameters.emplace_back("alpha12", patch_.initial.dphi / m.twist);
   }
 
   static bool is_initial_value(const std::string& name) {
@@ -86,7 +86,7 @@ class Builder {
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
     std::vector<AmplifierInput> in;
     if (has("alpha2")) {
-      c_.sources.emplace_back("drive_n", -scene_.drive_torque / patch_.maxima.drive_torque);
+      c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
       in.push_back(through("drive_n", "alpha2"));
     }
     if (has("alpha1")) in.push_back(through("sign_p", "alpha1"));
@@ -102,7 +102,7 @@ class Builder {
       in.push_back(through("m_abs", "alpha_tooth", "ws_pos"));
       in.push_back(through("m_abs_n", "alpha_tooth", "ws_neg"));
     }
-    if (has("alpha_load")) in.push_back(through(scene_.load_torque > 0 ? "ref_p" : "ref_n", "alpha_load"));
+    if (has("alpha_load")) in.push_back(through(patch_.load_torque > 0 ? "ref_p" : "ref_n", "alpha_load"));
     if (has("alpha_lock")) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
       in.push_back(through("lock_below", "alpha_lock", "engaged_p"));
       in.push_back(through("lock_above", "alpha_lock", "engaged_n"));
@@ -209,7 +209,6 @@ class Builder {
 
   static std::string format_band(double band) { return fmt::format("{}", band); }
 
-  const Scene& scene_;
   const Patch& patch_;
   Level level_;
   bool has_xp_inverted_ = false;
@@ -238,8 +237,8 @@ double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
 double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
 
-Circuit build_circuit(const Scene& scene, const Patch& patch, Level level) {
-  return Builder(scene, patch, level).build();
+Circuit build_circuit(const Patch& patch, Level level) {
+  return Builder(patch, level).build();
 }
 
 }  // namespace gearpatch::circuit

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "circuit/block_library.h"
+#include "machine/machine_profile.h"
 
 namespace gearpatch {
 struct Patch;
-struct Scene;
 }  // namespace gearpatch
 
 namespace gearpatch::circuit {
@@ -57,6 +57,8 @@ struct Probe {
 /// data, rendered to a deck by render_netlist.
 struct Circuit {
   std::string scene;
+  Level level = Level::ideal;  ///< how faithfully the blocks model the machine
+  MachineProfile machine;      ///< the machine it is patched on
   std::vector<Amplifier> amplifiers;
   std::vector<FunctionBlock> blocks;
   std::vector<std::pair<std::string, double>> sources;  ///< node → machine units (DC)
@@ -97,8 +99,8 @@ double comparator_offset(Level level);
 double friction_band(Level level);
 double lock_band(Level level);
 
-/// The circuit that solves (6.1)–(6.10) with the scene's settings at the
-/// given level, holding only the blocks the scene needs.
-Circuit build_circuit(const Scene& scene, const Patch& patch, Level level);
+/// The circuit that solves (6.1)–(6.10) with the patch's settings at the
+/// given level on the patch's machine, holding only the blocks the scene needs.
+Circuit build_circuit(const Patch& patch, Level level);
 
 }  // namespace gearpatch::circuit

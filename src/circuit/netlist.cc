@@ -113,8 +113,9 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
 
 }  // namespace
 
-std::string render_netlist(const Circuit& c, Level level, const MachineProfile& m,
-                           const TransientControl& control) {
+std::string render_netlist(const Circuit& c, const TransientControl& control) {
+  const Level level = c.level;
+  const MachineProfile& m = c.machine;
   return header(c, level, m) + parameters(c, level) + library(c, level, m) + program(c, m) +
          analysis(c, m, control);
 }

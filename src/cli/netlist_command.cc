@@ -8,7 +8,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
 
@@ -36,9 +36,9 @@ int run_netlist(const std::vector<std::string>& args) {
   patch_options.autoscale = vm.count("autoscale") > 0;
   patch_options.check_peaks = patch_options.autoscale;
   patch_options.comparator_offset = circuit::comparator_offset(level);
-  const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, patch_options), level);
+  const circuit::Circuit c = circuit::build_circuit(make_patch(scene, patch_options), level);
   const circuit::TransientControl control = chosen_quality(vm);
-  const std::string deck = circuit::render_netlist(c, level, scene.machine, control);
+  const std::string deck = circuit::render_netlist(c, control);
   if (!vm.count("output")) {
     std::fputs(deck.c_str(), stdout);
     return 0;

@@ -5,7 +5,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
 

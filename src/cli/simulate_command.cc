@@ -6,7 +6,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 
 namespace gearpatch::cli {
@@ -28,16 +28,17 @@ int run_simulate(const std::vector<std::string>& args) {
     return 0;
   const std::string file = single_file(vm, "simulate");
   const Scene scene = load_scene(file);
-  RunSpec spec = RunSpec::from_scene(scene);
+  RunSpec spec = run_spec(scene);
   if (vm.count("dt")) {
     spec.output_step = vm["dt"].as<double>();
     if (!(spec.output_step > 0)) throw Error("--dt must be > 0");
   }
   const double rtol = vm["rtol"].as<double>();
   if (!(rtol > 0 && rtol < 1)) throw Error("--rtol must be in (0, 1)");
-  const GearModel model(GearParameters::from_scene(scene));
+  const SolverKind solver = parse_solver(vm["solver"].as<std::string>());
+  const GearModel model(gear_parameters(scene));
   const Trajectory trajectory =
-      simulate(model, initial_state(scene), spec, parse_solver(vm["solver"].as<std::string>()), rtol);
+      with_scene(scene, [&] { return simulate(model, initial_state(scene), spec, solver, rtol); });
   if (vm.count("out")) write_file_atomically(vm["out"].as<std::string>(), trajectory.samples_csv());
   else std::fputs(trajectory.samples_csv().c_str(), stdout);
   if (vm.count("events")) write_file_atomically(vm["events"].as<std::string>(), trajectory.events_csv());

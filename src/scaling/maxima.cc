@@ -6,7 +6,7 @@
 
 #include "common/error.h"
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scaling/scaling_input.h"
 
 namespace gearpatch {
 
@@ -64,15 +64,15 @@ double contact_inertia(const GearParameters& p) {
   return 1.0 / (1.0 / p.inertia_primary + (1.0 - p.tooth_friction) / p.inertia_secondary);
 }
 
-RelativeMotion relative_motion(const Scene& s, const GearParameters& p, double drive_max) {
+RelativeMotion relative_motion(const ScalingInput& s, const GearParameters& p, double drive_max) {
   RelativeMotion r;
   // The paper's M_am/Θp; friction and load may push the same way (extension).
   r.accel = (drive_max + p.bearing_primary) / p.inertia_primary +
             (std::abs(p.load_torque) + p.bearing_secondary) / p.inertia_secondary;
   r.inertia = contact_inertia(p);
-  const double rate0 = s.speed_primary - s.speed_secondary;
+  const double rate0 = s.initial.omega_p - s.initial.omega_s;
   GearModel model(p);
-  const double twist0 = model.contact_twist(s.twist);
+  const double twist0 = model.contact_twist(s.initial.dphi);
   // Energy of the relative motion: initial speed, initial spring energy, and
   // the work of the force across the whole play 2ε ((6.11) read as corrected).
   r.entry_speed_sq = rate0 * rate0 + p.stiffness * twist0 * twist0 / r.inertia +
@@ -80,7 +80,7 @@ RelativeMotion relative_motion(const Scene& s, const GearParameters& p, double d
   return r;
 }
 
-double drive_maximum(const Scene& s, Maxima& m) {
+double drive_maximum(const ScalingInput& s, Maxima& m) {
   if (s.maxima.count("drive_torque")) {
     m.basis["drive_torque"] = "scene override maxima.drive_torque";
     return s.maxima.at("drive_torque");
@@ -89,18 +89,18 @@ double drive_maximum(const Scene& s, Maxima& m) {
     m.basis["drive_torque"] = "the drive's rated torque (drive.rated_torque)";
     return *s.rated_torque;
   }
-  if (s.drive_torque != 0) {
+  if (s.gear.drive_torque != 0) {
     m.basis["drive_torque"] = "|M_a|, the constant drive torque";
-    return std::abs(s.drive_torque);
+    return std::abs(s.gear.drive_torque);
   }
   return 0;
 }
 
 /// Energy of the scene at t = 0: kinetic plus the spring's, if it starts in contact.
-double initial_energy(const Scene& s, const GearParameters& p) {
-  const double twist = GearModel(p).contact_twist(s.twist);
-  return 0.5 * (p.inertia_primary * s.speed_primary * s.speed_primary +
-                p.inertia_secondary * s.speed_secondary * s.speed_secondary +
+double initial_energy(const ScalingInput& s, const GearParameters& p) {
+  const double twist = GearModel(p).contact_twist(s.initial.dphi);
+  return 0.5 * (p.inertia_primary * s.initial.omega_p * s.initial.omega_p +
+                p.inertia_secondary * s.initial.omega_s * s.initial.omega_s +
                 p.stiffness * twist * twist);
 }
 
@@ -113,11 +113,11 @@ bool has_torques(const GearParameters& p, const Maxima& m) {
 /// fixed by momentum without torques, and gains at most the net drive torque
 /// (after the bearing friction it must overcome) over the run. Without
 /// torques nothing adds energy, so ½·Θ·φ̇² <= E0 bounds each shaft as well.
-void estimate_speeds(const Scene& s, const GearParameters& p, const MaximaOptions& o, Maxima& m) {
+void estimate_speeds(const ScalingInput& s, const GearParameters& p, const MaximaOptions& o, Maxima& m) {
   const double total = p.inertia_primary + p.inertia_secondary;
-  const double v0 = std::abs(p.inertia_primary * s.speed_primary +
-                             p.inertia_secondary * s.speed_secondary) / total;
-  const double sign = s.drive_torque < 0 ? -1.0 : 1.0;
+  const double v0 = std::abs(p.inertia_primary * s.initial.omega_p +
+                             p.inertia_secondary * s.initial.omega_s) / total;
+  const double sign = s.gear.drive_torque < 0 ? -1.0 : 1.0;
   const double external = std::abs(sign * m.drive_torque - p.load_torque);
   const bool torques = has_torques(p, m);
   const double gain =
@@ -144,29 +144,32 @@ void estimate_speeds(const Scene& s, const GearParameters& p, const MaximaOption
     m.at(key) = w;
     m.basis[key] = how;
   };
-  bound(p.inertia_primary, p.inertia_secondary, s.speed_primary, "speed_primary");
-  bound(p.inertia_secondary, p.inertia_primary, s.speed_secondary, "speed_secondary");
+  bound(p.inertia_primary, p.inertia_secondary, s.initial.omega_p, "speed_primary");
+  bound(p.inertia_secondary, p.inertia_primary, s.initial.omega_s, "speed_secondary");
 }
 
-void apply_override(const Scene& s, const std::string& key, Maxima& m) {
+void apply_override(const ScalingInput& s, const std::string& key, Maxima& m) {
   auto it = s.maxima.find(key);
   if (it == s.maxima.end()) return;
   m.at(key) = it->second;
   m.basis[key] = "scene override maxima." + key;
 }
 
-void check(const Scene& s, const GearParameters& p, Maxima m) {
+void check(const GearParameters& p, Maxima m) {
   // Root causes first: without a relative speed nothing else has a scale.
   for (const char* key : {"relative_speed", "contact_twist", "twist", "torque", "speed_primary",
                           "speed_secondary"})
     if (const double value = m.at(key); !(value > 0))
-      throw Error(fmt::format("{}: the maximum {} comes out as {}: nothing in the scene drives it "
-                              "(no initial speed, twist or torque); give maxima.{} in the scene",
-                              s.source, key, value, key));
+      throw Error::about_scene(
+          std::string("maxima.") + key,
+          fmt::format("the maximum {} comes out as {}: nothing in the scene drives it "
+                      "(no initial speed, twist or torque); give maxima.{} in the scene",
+                      key, value, key));
   if (m.twist < p.half_backlash)
-    throw Error(fmt::format("{}: twist maximum Δφm = {} is below the half backlash ε = {}: the "
-                            "dead-zone threshold a = ε/Δφm would exceed 1 MU; raise maxima.twist",
-                            s.where("maxima.twist"), m.twist, p.half_backlash));
+    throw Error::about_scene(
+        "maxima.twist", fmt::format("twist maximum Δφm = {} is below the half backlash ε = {}: the "
+                                    "dead-zone threshold a = ε/Δφm would exceed 1 MU; raise maxima.twist",
+                                    m.twist, p.half_backlash));
 }
 
 }  // namespace
@@ -174,7 +177,7 @@ void check(const Scene& s, const GearParameters& p, Maxima m) {
 namespace {
 
 /// Δφ̇m: (6.11) as corrected, extended by the initial state and the force in contact.
-void estimate_relative_speed(const Scene& s, const GearParameters& p, const RelativeMotion& r,
+void estimate_relative_speed(const ScalingInput& s, const GearParameters& p, const RelativeMotion& r,
                              Maxima& m) {
   m.relative_speed = std::sqrt(r.entry_speed_sq + r.inertia * r.accel * r.accel / p.stiffness);
   m.basis["relative_speed"] =
@@ -189,7 +192,7 @@ void estimate_relative_speed(const Scene& s, const GearParameters& p, const Rela
 }
 
 /// Δφ'm: (6.12) by energy, with the force that keeps pushing in contact.
-void estimate_contact_twist(const Scene& s, const GearParameters& p, const RelativeMotion& r,
+void estimate_contact_twist(const ScalingInput& s, const GearParameters& p, const RelativeMotion& r,
                             Maxima& m) {
   const double c = p.stiffness;
   const double static_twist = r.inertia * r.accel / c;  // where the force balances the spring
@@ -212,7 +215,8 @@ void estimate_contact_twist(const Scene& s, const GearParameters& p, const Relat
 
 }  // namespace
 
-Maxima estimate_maxima(const Scene& s, const GearParameters& p, const MaximaOptions& o) {
+Maxima estimate_maxima(const ScalingInput& s, const MaximaOptions& o) {
+  const GearParameters& p = s.gear;
   Maxima m;
   m.drive_torque = drive_maximum(s, m);
   const RelativeMotion r = relative_motion(s, p, m.drive_torque);
@@ -237,7 +241,7 @@ Maxima estimate_maxima(const Scene& s, const GearParameters& p, const MaximaOpti
   }
   apply_override(s, "speed_primary", m);
   apply_override(s, "speed_secondary", m);
-  check(s, p, m);
+  check(p, m);
   return m;
 }
 

@@ -5,8 +5,8 @@
 
 namespace gearpatch {
 
-struct Scene;
 struct GearParameters;
+struct ScalingInput;
 
 /// The maxima of section 6 that amplitude scaling divides by (one machine
 /// unit stands for each), physical units, with a sentence per value saying
@@ -39,10 +39,9 @@ struct MaximaOptions {
 /// The a-priori maxima of section 6, extended where the paper's examples do
 /// not reach (drive and load torque, friction, tooth friction, initial twist;
 /// each extension vanishes in the paper's case), then the scene's [maxima]
-/// overrides. Throws Error (input) when a maximum comes out zero or an
-/// override contradicts the backlash.
-Maxima estimate_maxima(const Scene& scene, const GearParameters& p,
-                       const MaximaOptions& options = {});
+/// overrides. Throws Error (input, about the maxima key) when a maximum comes
+/// out zero or an override contradicts the backlash.
+Maxima estimate_maxima(const ScalingInput& input, const MaximaOptions& options = {});
 
 /// The smallest of 1, 2, 5 × 10^n that is >= x (x within 1e-9 of one counts as it).
 double round_up_125(double x);

@@ -9,7 +9,7 @@
 #include "scaling/peaks.h"
 #include "scaling/table1.h"
 #include "scaling/time_scale.h"
-#include "scene/scene.h"
+#include "scaling/scaling_input.h"
 
 namespace gearpatch {
 
@@ -63,6 +63,18 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
   return "raise maxima.torque, or use a machine with larger input weights";
 }
 
+/// The scene key to change when a coefficient is beyond every weight: the
+/// message names its file and line.
+std::string culprit(const Coefficient& c) {
+  if (c.kind == CoefficientKind::integrator) return "machine.time_scale";
+  if (c.kind == CoefficientKind::initial)
+    return c.name == "alpha6" ? "initial.speed_primary"
+         : c.name == "alpha7" ? "initial.speed_secondary" : "initial.twist";
+  if (c.name == "alpha11") return "gear.backlash";
+  if (c.name == "alpha8" || c.name == "alpha9") return "maxima.relative_speed";
+  return "maxima.torque";
+}
+
 Potentiometer split(const Coefficient& c, double beta, const MachineProfile& machine,
                     const Maxima& m, double half_backlash) {
   const double table = c.at(beta);
@@ -76,7 +88,7 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
                            [&](int n) { return size <= n * (1 + 1e-12); });
   if (fits == weights.end()) {
     const double needed = beta * size / weights.back();
-    throw Error(fmt::format(
+    throw Error::about_scene(culprit(c), fmt::format(
         "{} = {} = {:.6g}{} is beyond the largest input weight {}{}: {}", c.name, c.formula, table,
         integrator && machine.integrator_constant != 1
             ? fmt::format(" (÷ k0 → {:.6g})", coefficient) : "",
@@ -144,12 +156,14 @@ void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Pat
   }
 }
 
-void check_and_autoscale(const Scene& s, const GearParameters& p, const PatchOptions& o, Patch& patch) {
+void check_and_autoscale(const ScalingInput& s, const GearParameters& p, const PatchOptions& o, Patch& patch) {
   PhysicalPeaks x;
   try {
-    x = simulate_peaks(s, p);
+    x = simulate_peaks(s);
   } catch (const Error& e) {
-    if (o.autoscale) throw Error(std::string("autoscale needs the reference model, which failed: ") + e.what());
+    if (o.autoscale)
+      throw Error::about_scene(e.scene_key().value_or(""),
+                               std::string("autoscale needs the reference model, which failed: ") + e.what());
     patch.warnings.push_back(std::string("peaks not checked: the reference model failed: ") + e.what());
     return;
   }
@@ -178,7 +192,7 @@ int rank(const std::string& name) {
   return std::stoi(name.substr(5));
 }
 
-void add_notes(const Scene& s, const GearParameters& p, const PatchOptions& o, const Table1& t,
+void add_notes(const ScalingInput& s, const GearParameters& p, const PatchOptions& o, const Table1& t,
                Patch& patch) {
   for (const auto& c : t.entries)
     if (!c.remark.empty()) patch.notes.push_back(c.name + ": " + c.remark);
@@ -209,7 +223,7 @@ constexpr double lock_catch_fraction = 1e-3;
 /// 16/17) is dialled at its strongest, α_lock = 1 at that weight, and stops a
 /// full-scale speed in 1/(n·k0·β) s of real time. Automatic β is raised until
 /// that is at most lock_catch_fraction of the run; an explicit β is warned about.
-void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1& t, TimeScale& ts) {
+void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, Table1& t, TimeScale& ts) {
   const int strongest = *std::max_element(s.machine.weights.begin(), s.machine.weights.end());
   const double k0 = s.machine.integrator_constant;
   const double needed = 1 / (strongest * k0 * lock_catch_fraction * s.duration);
@@ -242,19 +256,24 @@ void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1&
 
 }  // namespace
 
-Patch make_patch(const Scene& s, const PatchOptions& o) {
-  const GearParameters p = GearParameters::from_scene(s);
+Patch make_patch(const ScalingInput& s, const PatchOptions& o) {
+  const GearParameters& p = s.gear;
   Patch patch;
   patch.scene = s.name;
+  patch.initial = s.initial;
+  patch.drive_torque = p.drive_torque;
+  patch.load_torque = p.load_torque;
+  patch.duration = s.duration;
+  patch.machine = s.machine;
   patch.k0 = s.machine.integrator_constant;
   patch.unit_volts = s.machine.unit_volts;
   if (!(o.comparator_offset > 0 && o.comparator_offset < 1))
     throw Error("the comparator offset must be in (0, 1) MU");
   if (o.beta && !(*o.beta > 0 && std::isfinite(*o.beta))) throw Error("β must be a number > 0");
-  patch.a_priori = patch.maxima = estimate_maxima(s, p, {o.round_speeds});
+  patch.a_priori = patch.maxima = estimate_maxima(s, {o.round_speeds});
   if (o.check_peaks || o.autoscale) check_and_autoscale(s, p, o, patch);
 
-  Table1 t = table1(s, p, patch.maxima);
+  Table1 t = table1(s, patch.maxima);
   std::stable_sort(t.entries.begin(), t.entries.end(),
                    [](const auto& a, const auto& b) { return rank(a.name) < rank(b.name); });
   std::vector<IntegratorRate> rates;

@@ -6,11 +6,13 @@
 #include <utility>
 #include <vector>
 
+#include "machine/machine_profile.h"
+#include "model/gear_state.h"
 #include "scaling/maxima.h"
 
 namespace gearpatch {
 
-struct Scene;
+struct ScalingInput;
 
 /// One coefficient potentiometer of the patch: Table 1's coefficient split
 /// into a dial setting α in [0, 1] and an input weight n, and the dial
@@ -43,6 +45,12 @@ struct PatchOptions {
 /// scale (machine units; > 1 is an overload).
 struct Patch {
   std::string scene;   ///< the scene's name
+  // What the circuit takes from the scene besides the settings.
+  GearState initial;        ///< φ̇p(0), φ̇s(0), Δφ(0): the signed initial values
+  double drive_torque = 0;  ///< M_a, its sign for the drive source
+  double load_torque = 0;   ///< its sign picks the reference alpha_load takes
+  double duration = 1;      ///< s of real time
+  MachineProfile machine;
   double beta = 1, k0 = 1, unit_volts = 10;
   Maxima maxima;       ///< the maxima the settings use
   Maxima a_priori;     ///< section 6's estimate (equal to maxima without autoscale)
@@ -63,9 +71,9 @@ struct Patch {
 /// Settings for the scene: a-priori maxima (section 6), β, Table 1 split into
 /// α·n, loaded settings; with check_peaks a run of the reference model
 /// reports every signal's peak, with autoscale the maxima become the peaks
-/// plus headroom. Throws Error (input) for a coefficient no weight reaches,
-/// naming it and what to change.
-Patch make_patch(const Scene& scene, const PatchOptions& options = {});
+/// plus headroom. Throws Error (input, about the scene key to change) for a
+/// coefficient no weight reaches, naming it and what to change.
+Patch make_patch(const ScalingInput& input, const PatchOptions& options = {});
 
 /// What a potentiometer at dial position `dial` delivers into a load of
 /// `load_ratio` (λ = R_load/R_pot) times its own resistance:

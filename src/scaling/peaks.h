@@ -4,8 +4,8 @@
 
 namespace gearpatch {
 
-struct Scene;
 struct GearParameters;
+struct ScalingInput;
 struct Maxima;
 
 /// The largest magnitude of each physical quantity the circuit carries over
@@ -24,7 +24,7 @@ struct PhysicalPeaks {
 };
 
 /// Runs the reference model (exact solver) over the scene's duration.
-PhysicalPeaks simulate_peaks(const Scene& scene, const GearParameters& p);
+PhysicalPeaks simulate_peaks(const ScalingInput& input);
 
 /// Each signal's peak as a fraction of its scale (machine units).
 /// `scaled`: the signals that own a maximum (Wp, Ws, DW, X, X', m, drive);

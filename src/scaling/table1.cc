@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scaling/scaling_input.h"
 
 namespace gearpatch {
 
@@ -49,13 +49,13 @@ std::string reference(double value) {
   return value < 0 ? "the -1 MU reference" : "the +1 MU reference";
 }
 
-void primary(Builder& b, const Scene& s, const GearParameters& p, const Maxima& m) {
+void primary(Builder& b, const ScalingInput& s, const GearParameters& p, const Maxima& m) {
   const double scale = p.inertia_primary * m.speed_primary;  // Θp·φ̇pm
   const std::string in = "Wp integrator (6.1), from ";
   b.integrator(p.bearing_primary > 0, "alpha1", "k_Rp/(Θp·β·φ̇pm)", p.bearing_primary / scale,
                in + "sign(Wp) (friction characteristic, block 2)",
                "no primary bearing friction (k_Rp = 0): block 2 left out");
-  b.integrator(s.drive_torque != 0 || s.rated_torque.has_value(), "alpha2", "M_am/(Θp·β·φ̇pm)",
+  b.integrator(s.gear.drive_torque != 0 || s.rated_torque.has_value(), "alpha2", "M_am/(Θp·β·φ̇pm)",
                m.drive_torque / scale, in + "the drive signal Ma/Mam",
                "no drive torque (drive.torque = 0 and no drive.rated_torque)");
   b.integrator(true, "alpha3", "M0m/(Θp·β·φ̇pm)", m.torque / scale, in + "m", "");
@@ -115,18 +115,19 @@ void coupling(Builder& b, const GearParameters& p, const Maxima& m) {
 
 }  // namespace
 
-Table1 table1(const Scene& s, const GearParameters& p, const Maxima& m) {
+Table1 table1(const ScalingInput& s, const Maxima& m) {
+  const GearParameters& p = s.gear;
   Table1 t;
   Builder b(t);
   primary(b, s, p, m);
   secondary(b, p, m);
-  b.initial("alpha6", "φ̇p0/φ̇pm", s.speed_primary / m.speed_primary,
-            "IC of the Wp integrator, from " + reference(s.speed_primary), "φ̇p(0)");
-  b.initial("alpha7", "φ̇s0/φ̇sm", s.speed_secondary / m.speed_secondary,
-            "IC of the Ws integrator, from " + reference(s.speed_secondary), "φ̇s(0)");
+  b.initial("alpha6", "φ̇p0/φ̇pm", s.initial.omega_p / m.speed_primary,
+            "IC of the Wp integrator, from " + reference(s.initial.omega_p), "φ̇p(0)");
+  b.initial("alpha7", "φ̇s0/φ̇sm", s.initial.omega_s / m.speed_secondary,
+            "IC of the Ws integrator, from " + reference(s.initial.omega_s), "φ̇s(0)");
   coupling(b, p, m);
-  b.initial("alpha12", "Δφ0/Δφm", s.twist / m.twist,
-            "IC of the X integrator, from " + reference(s.twist), "Δφ(0)");
+  b.initial("alpha12", "Δφ0/Δφm", s.initial.dphi / m.twist,
+            "IC of the X integrator, from " + reference(s.initial.dphi), "Δφ(0)");
   if (p.half_backlash == 0) b.unused("a", "no backlash (2ε = 0): no dead zone, X' = alpha11·X");
   if (p.damping == 0) b.unused("delta1", "no damping (d = 0): no damping switch");
   else if (p.half_backlash == 0) b.unused("delta1", "no backlash: damping acts always, no switch");

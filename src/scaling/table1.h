@@ -7,8 +7,8 @@
 
 namespace gearpatch {
 
-struct Scene;
 struct GearParameters;
+struct ScalingInput;
 
 /// Where a coefficient sits: an integrator input (its Table 1 value scales
 /// with 1/β and is divided by k0 on the machine), a summer or amplifier input
@@ -37,7 +37,7 @@ struct Table1 {
 };
 
 /// Table 1 for the circuit of Bild 4 as gearpatch patches it, from the maxima.
-Table1 table1(const Scene& scene, const GearParameters& p, const Maxima& m);
+Table1 table1(const ScalingInput& input, const Maxima& m);
 
 /// The fastest contact oscillation, rad/s of real time:
 /// sqrt(c·(1/Θp + (1 + k_z)/Θs)) (sqrt(c/Θ) without tooth friction).

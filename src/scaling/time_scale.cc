@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "scaling/maxima.h"
-#include "scene/machine.h"
+#include "machine/machine_profile.h"
 
 namespace gearpatch {
 

@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "common/error.h"
-#include "scene/scene.h"
 #include "solver/event_locator.h"
 
 namespace gearpatch {
@@ -98,7 +97,7 @@ class EventBudget {
       "bearing friction that holds the primary), or end the run before this time (run.duration)";
 
   [[noreturn]] void stuck(const EventRecord& e) const {
-    throw Error(fmt::format(
+    throw Error::about_scene("", fmt::format(
         "the model is stuck at t = {} s: {} events without time passing ({}), now in mode {}: {}",
         e.t, stalled_, shares(stalled_kinds_, stalled_), to_string(e.mode_after),
         4 * stalled_locks_ >= stalled_
@@ -118,7 +117,7 @@ class EventBudget {
             ? lock_advice
             : "shorten the run (run.duration), or make the events rarer: contact damping "
               "(restitution < 1), a softer coupling (stiffness) or more backlash";
-    throw Error(fmt::format(
+    throw Error::about_scene("", fmt::format(
         "too many events: {} by t = {:.9g} s of the {:g} s run, {} per second of model time "
         "lately ({}); at that rate the run needs {} events, more than the limit of {}: {}",
         events_, t, spec_.duration,
@@ -154,7 +153,7 @@ class StepBudget {
     if (steps_ > spec_.max_steps || needed > 2.0 * spec_.max_steps) {
       const ModeDynamics d = model.dynamics(mode);
       const double weight = d.inv_p + d.inv_s * d.gain_s;
-      throw Error(fmt::format(
+      throw Error::about_scene("", fmt::format(
           "too many solver steps: {} by t = {:.9g} s of the {:g} s run, in mode {} lately; at that "
           "rate the run needs {} steps, more than the limit of {}: {}shorten the run "
           "(run.duration), or make the contact oscillation slower (gear.stiffness) or damped "
@@ -186,14 +185,14 @@ class StepBudget {
   const ModeDynamics d = model.dynamics(mode);
   const double resolution = std::nextafter(t, INFINITY) - t;
   if (!d.coupled)
-    throw Error(fmt::format("the solver cannot step past t = {:.9g} s of the {:g} s run in mode "
+    throw Error::about_scene("", fmt::format("the solver cannot step past t = {:.9g} s of the {:g} s run in mode "
                             "{}: its step fell below the resolution of the time axis there "
                             "({:.3g} s); shorten run.duration",
                             t, spec.duration, to_string(mode), resolution));
   const double weight = d.inv_p + d.inv_s * d.gain_s;
   const double period = 2 * std::numbers::pi / std::sqrt(weight * d.stiffness);
   const double decay = d.damping > 0 ? 2 / (weight * d.damping) : INFINITY;
-  throw Error(fmt::format(
+  throw Error::about_scene("", fmt::format(
       "the solver cannot step past t = {:.9g} s of the {:g} s run in mode {}: the contact "
       "oscillates with a period of {:.3g} s{}, too short to sample (1/16 of a period per step) "
       "on the time axis there, whose resolution is {:.3g} s; lower gear.stiffness{}, or shorten "
@@ -240,17 +239,6 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     observer.event(record);
   }
   grid.emit_through(spec.duration, mode, [&](double) { return state; }, observer);
-}
-
-RunSpec RunSpec::from_scene(const Scene& scene) {
-  RunSpec spec;
-  spec.duration = scene.duration;
-  spec.output_step = scene.output_step.value_or(scene.duration / 2000);
-  return spec;
-}
-
-GearState initial_state(const Scene& scene) {
-  return {scene.speed_primary, scene.speed_secondary, scene.twist};
 }
 
 SolverKind parse_solver(const std::string& name) {

@@ -8,8 +8,6 @@
 
 namespace gearpatch {
 
-struct Scene;
-
 /// What the run is asked for: length, output grid, and the bounds on events
 /// and on solver steps that stop a run whose cost would grow without bound.
 struct RunSpec {
@@ -17,13 +15,7 @@ struct RunSpec {
   double output_step = 1e-3;
   std::size_t max_events = 5'000'000;
   std::size_t max_steps = 100'000'000;  ///< intervals the segments are walked in
-
-  /// The scene's duration and output step (default: 2000 intervals).
-  static RunSpec from_scene(const Scene& scene);
 };
-
-/// The scene's initial speeds and twist.
-GearState initial_state(const Scene& scene);
 
 /// Integrates the hybrid model from `initial`: mode by mode, each segment
 /// from `stepper`, each mode ended by the first guard crossing; the observer
