@@ -110,3 +110,25 @@ TEST_CASE("the adaptive solver converges as its tolerance tightens", "[solver]")
     }
   }
 }
+
+TEST_CASE("one run feeds several output grids exactly as separate runs would", "[solver]") {
+  for (const std::string name : {"bild5b", "bild6c", "driven"}) {
+    INFO(name);
+    const Scene scene = testing::example_scene(name);
+    const GearModel model(gear_parameters(scene));
+    RunSpec fine = run_spec(scene), coarse = run_spec(scene);
+    fine.output_step = scene.duration / 20000;
+    coarse.output_step = scene.duration / 1999;  // not a multiple of the fine step
+    Trajectory together_fine, together_coarse;
+    TrajectoryRecorder fine_recorder(model, together_fine), coarse_recorder(model, together_coarse);
+    auto stepper = make_exact_stepper();
+    integrate(model, *stepper, initial_state(scene), fine, fine_recorder, {{coarse.output_step, coarse_recorder}});
+    for (const auto& [together, spec] : {std::pair{&together_fine, fine}, std::pair{&together_coarse, coarse}}) {
+      const Trajectory alone = simulate(model, initial_state(scene), spec);
+      REQUIRE(together->samples.size() == alone.samples.size());
+      CHECK(together->samples_csv() == alone.samples_csv());
+      CHECK(together->events_csv() == alone.events_csv());
+    }
+    CHECK(together_coarse.samples.size() == 2000);
+  }
+}

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "circuit/circuit.h"
@@ -113,6 +114,21 @@ TEST_CASE("verify names the scene file and line of a scaling refusal, before any
   spice::ScriptedSimulator never;
   CHECK_THROWS_WITH(verify::verify(load_scene(wide), {}, never), Catch::StartsWith(wide + ":13: alpha11 = "));
   CHECK(never.decks().empty());
+}
+
+TEST_CASE("verify keeps the patch's warnings and reports them", "[verify]") {
+  const Scene scene = load_scene(testing::source_path("scenes/extremes/efficiency-one-locked.ini"));
+  spice::ScriptedSimulator dead;
+  spice::Vectors flat;
+  flat.data["time"] = {0, scene.duration * 10};
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
+  dead.then_return(flat);
+  const verify::VerifyResult r = verify::verify(scene, {}, dead);
+  REQUIRE(r.warnings.size() == 2);
+  CHECK_THAT(r.warnings[0], Catch::Contains("alpha2 = 0.02 at β = 10 is below 0.1"));
+  CHECK_THAT(verify::to_table(r), Catch::Contains("warning (settings): " + r.warnings[1]));
+  const auto j = nlohmann::json::parse(verify::to_json(r));
+  CHECK(j["warnings"] == nlohmann::json(r.warnings));
 }
 
 TEST_CASE("the scripted simulator stands in for ngspice", "[verify]") {

@@ -156,17 +156,16 @@ void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Pat
   }
 }
 
-void check_and_autoscale(const ScalingInput& s, const GearParameters& p, const PatchOptions& o, Patch& patch) {
-  PhysicalPeaks x;
-  try {
-    x = simulate_peaks(s);
-  } catch (const Error& e) {
+void check_and_autoscale(const GearParameters& p, const PatchOptions& o, const PeakRun& run,
+                         Patch& patch) {
+  if (const auto& e = run.failure) {
     if (o.autoscale)
-      throw Error::about_scene(e.scene_key().value_or(""),
-                               std::string("autoscale needs the reference model, which failed: ") + e.what());
-    patch.warnings.push_back(std::string("peaks not checked: the reference model failed: ") + e.what());
+      throw Error::about_scene(e->scene_key().value_or(""),
+                               std::string("autoscale needs the reference model, which failed: ") + e->what());
+    patch.warnings.push_back(std::string("peaks not checked: the reference model failed: ") + e->what());
     return;
   }
+  const PhysicalPeaks& x = *run.peaks;
   patch.a_priori_peaks = peak_fractions(x, patch.a_priori, p).scaled;
   if (o.autoscale) {
     if (!(o.headroom >= 0 && o.headroom < 1)) throw Error("the headroom must be in [0, 1)");
@@ -254,9 +253,18 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
     }
 }
 
-}  // namespace
+PeakRun run_reference(const ScalingInput& s) {
+  PeakRun run;
+  try {
+    run.peaks = simulate_peaks(s);
+  } catch (const Error& e) {
+    run.failure = e;
+  }
+  return run;
+}
 
-Patch make_patch(const ScalingInput& s, const PatchOptions& o) {
+/// make_patch, with the reference run given or, when the peaks are checked, made here.
+Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given) {
   const GearParameters& p = s.gear;
   Patch patch;
   patch.scene = s.name;
@@ -271,7 +279,7 @@ Patch make_patch(const ScalingInput& s, const PatchOptions& o) {
     throw Error("the comparator offset must be in (0, 1) MU");
   if (o.beta && !(*o.beta > 0 && std::isfinite(*o.beta))) throw Error("β must be a number > 0");
   patch.a_priori = patch.maxima = estimate_maxima(s, {o.round_speeds});
-  if (o.check_peaks || o.autoscale) check_and_autoscale(s, p, o, patch);
+  if (o.check_peaks || o.autoscale) check_and_autoscale(p, o, given ? *given : run_reference(s), patch);
 
   Table1 t = table1(s, patch.maxima);
   std::stable_sort(t.entries.begin(), t.entries.end(),
@@ -294,6 +302,16 @@ Patch make_patch(const ScalingInput& s, const PatchOptions& o) {
                    [](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
   add_notes(s, p, o, t, patch);
   return patch;
+}
+
+}  // namespace
+
+Patch make_patch(const ScalingInput& input, const PatchOptions& options) {
+  return compose(input, options, nullptr);
+}
+
+Patch make_patch(const ScalingInput& input, const PatchOptions& options, const PeakRun& run) {
+  return compose(input, options, &run);
 }
 
 }  // namespace gearpatch

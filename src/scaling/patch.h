@@ -9,6 +9,7 @@
 #include "machine/machine_profile.h"
 #include "model/gear_state.h"
 #include "scaling/maxima.h"
+#include "scaling/peaks.h"
 
 namespace gearpatch {
 
@@ -74,6 +75,9 @@ struct Patch {
 /// plus headroom. Throws Error (input, about the scene key to change) for a
 /// coefficient no weight reaches, naming it and what to change.
 Patch make_patch(const ScalingInput& input, const PatchOptions& options = {});
+/// The same with the reference run already done (verify runs it once for the
+/// peak check and its comparison).
+Patch make_patch(const ScalingInput& input, const PatchOptions& options, const PeakRun& run);
 
 /// What a potentiometer at dial position `dial` delivers into a load of
 /// `load_ratio` (λ = R_load/R_pot) times its own resistance:

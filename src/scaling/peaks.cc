@@ -71,7 +71,7 @@ class PeakObserver : public Observer {
 
 }  // namespace
 
-PhysicalPeaks simulate_peaks(const ScalingInput& in) {
+PhysicalPeaks simulate_peaks(const ScalingInput& in, const std::vector<Output>& more) {
   const GearParameters& p = in.gear;
   const GearModel model(p);
   RunSpec spec;
@@ -86,7 +86,7 @@ PhysicalPeaks simulate_peaks(const ScalingInput& in) {
   peaks.drive = std::abs(p.drive_torque);
   PeakObserver observer(model, first, peaks);
   auto stepper = make_exact_stepper();
-  integrate(model, *stepper, in.initial, spec, observer);
+  integrate(model, *stepper, in.initial, spec, observer, more);
   return peaks;
 }
 

@@ -14,9 +14,8 @@ namespace {
 /// Emits the output grid t_k = min(k·dt, T) as the solution becomes known.
 class OutputGrid {
  public:
-  OutputGrid(const RunSpec& spec)
-      : dt_(spec.output_step), end_(spec.duration),
-        last_(static_cast<long>(std::ceil(spec.duration / spec.output_step - 1e-9))) {}
+  OutputGrid(double step, double duration)
+      : dt_(step), end_(duration), last_(static_cast<long>(std::ceil(duration / step - 1e-9))) {}
 
   template <class StateAt>
   void emit_through(double b, const Mode& mode, StateAt&& state_at, Observer& observer) {
@@ -202,17 +201,40 @@ class StepBudget {
       resolution, d.damping > 0 ? " or the damping" : ""));
 }
 
+/// Every output grid of the run with the observer that sees it.
+class Outputs {
+ public:
+  Outputs(const RunSpec& spec, Observer& observer, const std::vector<Output>& more) {
+    add(spec.output_step, spec.duration, observer);
+    for (const Output& o : more) add(o.step, spec.duration, o.observer);
+  }
+
+  template <class StateAt>
+  void emit_through(double b, const Mode& mode, StateAt&& state_at) {
+    for (auto& [grid, observer] : grids_) grid.emit_through(b, mode, state_at, *observer);
+  }
+  void event(const EventRecord& record) {
+    for (auto& grid : grids_) grid.second->event(record);
+  }
+
+ private:
+  void add(double step, double duration, Observer& observer) {
+    constexpr double most_rows = 1e8;
+    if (!(step > 0) || !(duration / step <= most_rows))
+      throw Error(fmt::format("an output step of {:g} s gives {:.3g} rows over the {:g} s run, more "
+                              "than the {:g} a run may write: raise run.output_step (or --dt)",
+                              step, duration / step, duration, most_rows));
+    grids_.emplace_back(OutputGrid(step, duration), &observer);
+  }
+
+  std::vector<std::pair<OutputGrid, Observer*>> grids_;
+};
+
 }  // namespace
 
 void integrate(const GearModel& model, Stepper& stepper, GearState state, const RunSpec& spec,
-               Observer& observer) {
-  constexpr double most_rows = 1e8;
-  if (!(spec.output_step > 0) || !(spec.duration / spec.output_step <= most_rows))
-    throw Error(fmt::format("an output step of {:g} s gives {:.3g} rows over the {:g} s run, more "
-                            "than the {:g} a run may write: raise run.output_step (or --dt)",
-                            spec.output_step, spec.duration / spec.output_step, spec.duration,
-                            most_rows));
-  OutputGrid grid(spec);
+               Observer& observer, const std::vector<Output>& more) {
+  Outputs outputs(spec, observer, more);
   Mode mode = model.initial_mode(state);
   double t = 0;
   EventBudget budget(spec);
@@ -222,7 +244,7 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     const Crossing crossing = locate_first_crossing(
         *segment, model.guards(mode), t, [&](double, double b) {
           steps.count(b, model, mode);
-          grid.emit_through(b, mode, [&](double s) { return segment->state_at(s); }, observer);
+          outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
         });
     GearState before = segment->state_at(crossing.time);
     if (!crossing.kind) {
@@ -236,9 +258,9 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     mode = model.cross(mode, *crossing.kind, state);
     const EventRecord record{t, *crossing.kind, before, state, previous, mode};
     budget.count(record, model);
-    observer.event(record);
+    outputs.event(record);
   }
-  grid.emit_through(spec.duration, mode, [&](double) { return state; }, observer);
+  outputs.emit_through(spec.duration, mode, [&](double) { return state; });
 }
 
 SolverKind parse_solver(const std::string& name) {

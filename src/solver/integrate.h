@@ -1,6 +1,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "model/gear_model.h"
 #include "solver/segment.h"
@@ -17,12 +18,20 @@ struct RunSpec {
   std::size_t max_steps = 100'000'000;  ///< intervals the segments are walked in
 };
 
+/// A further output grid of one run and the observer that sees it (verify
+/// checks the peaks on a fine grid and compares on the deck's).
+struct Output {
+  double step;
+  Observer& observer;
+};
+
 /// Integrates the hybrid model from `initial`: mode by mode, each segment
 /// from `stepper`, each mode ended by the first guard crossing; the observer
-/// sees the output grid and the events. Throws Error if the run makes no
-/// progress (events without time passing) or exceeds max_events.
+/// sees the output grid and the events, and each of `more` its own grid and
+/// the same events. Throws Error if the run makes no progress (events without
+/// time passing) or exceeds max_events.
 void integrate(const GearModel& model, Stepper& stepper, GearState initial, const RunSpec& spec,
-               Observer& observer);
+               Observer& observer, const std::vector<Output>& more = {});
 
 /// Which reference solver to use.
 enum class SolverKind { exact, adaptive };

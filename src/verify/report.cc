@@ -43,6 +43,7 @@ std::string to_table(const VerifyResult& r) {
     t += fmt::format("momentum drift (circuit, no friction): {:.4f} %\n", 100 * c.momentum_drift);
   for (const auto& o : r.overloads)
     t += fmt::format("OVERLOAD {} = {:.4g} MU at t = {:.6g} s\n", o.node, o.value, o.t);
+  for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
   t += fmt::format("ngspice: {:.2f} s\n\n", r.ngspice_seconds);
   if (r.passed) return t + "PASS\n";
   t += "FAIL\n";
@@ -76,6 +77,7 @@ std::string to_json(const VerifyResult& r) {
   for (const auto& o : r.overloads) j["overloads"].push_back({{"node", o.node}, {"t", o.t}, {"value", o.value}});
   j["failures"] = r.failures;
   j["diagnosis"] = r.diagnosis;
+  j["warnings"] = r.warnings;
   return j.dump(2) + "\n";
 }
 
