@@ -1,7 +1,8 @@
 # Checks the module layering of src/: the graph "module -> modules it
 # includes" (a module is a folder of src/) has no cycle, and the modules below
 # the scene never reach scene/, not even through another module: the scene is
-# converted once, at the top (scene/scene_inputs.h).
+# converted once, at the top (scene/scene_inputs.h); and only the command line
+# includes bench/ (a library of its own, outside gearpatch_core).
 # Run: cmake -DSOURCE_DIR=<repo> -P cmake/check_layering.cmake
 cmake_minimum_required(VERSION 3.20)
 set(BELOW_SCENE common machine model solver spice scaling circuit)
@@ -70,5 +71,11 @@ foreach(start ${BELOW_SCENE})
     endforeach()
   endwhile()
 endforeach()
+foreach(m ${MODULES})
+  if(NOT m STREQUAL "cli" AND "bench" IN_LIST EDGES_${m})
+    message(FATAL_ERROR "${m} includes bench/: only the command line may (bench is not in gearpatch_core)")
+  endif()
+endforeach()
 list(LENGTH MODULES count)
-message(STATUS "layering: ${count} modules, acyclic, none of ${BELOW_SCENE} reaches scene/")
+message(STATUS "layering: ${count} modules, acyclic, none of ${BELOW_SCENE} reaches scene/, "
+               "only cli includes bench/")

@@ -8,7 +8,7 @@
 #include <sys/resource.h>
 
 #include "bench/pareto.h"
-#include "bench/quality.h"
+#include "circuit/quality.h"
 #include "circuit/circuit.h"
 #include "common/error.h"
 #include "common/numbers.h"
@@ -149,7 +149,7 @@ std::vector<double> standard_tolerances() {
 }
 
 std::vector<Knob> standard_knobs() {
-  const circuit::TransientControl d = quality_preset(default_quality()).control;
+  const circuit::TransientControl d = circuit::quality_preset(circuit::default_quality()).control;
   std::vector<Knob> knobs;
   knobs.push_back({"default", "verify default", circuit::Level::ideal, d, {}});
   for (double points : {500.0, 2000.0, 4000.0, 16000.0})
@@ -176,9 +176,9 @@ std::vector<Knob> standard_knobs() {
       c.output_points = points;
       knobs.push_back({"grid", fmt::format("output grid {}", points), circuit::Level::ideal, c, {}});
     }
-  for (const QualityPreset& preset : quality_presets()) {
+  for (const circuit::QualityPreset& preset : circuit::quality_presets()) {
     auto same = std::find_if(knobs.begin(), knobs.end(), [&](const Knob& k) {
-      return k.level == circuit::Level::ideal && same_control(k.control, preset.control);
+      return k.level == circuit::Level::ideal && circuit::same_control(k.control, preset.control);
     });
     if (same == knobs.end())
       same = knobs.insert(knobs.end(), {"preset", "preset " + preset.name, circuit::Level::ideal,
@@ -381,7 +381,7 @@ BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
       r.default_on_median_front = median_front[k];
     }
   }
-  for (const QualityPreset& preset : quality_presets())
+  for (const circuit::QualityPreset& preset : circuit::quality_presets())
     for (std::size_t k = 0; k < o.knobs.size(); ++k) {
       const auto& names = o.knobs[k].presets;
       if (std::find(names.begin(), names.end(), preset.name) != names.end()) {
