@@ -4,7 +4,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <limits>
 #include <set>
 
 #include <fmt/format.h>
@@ -266,22 +265,6 @@ const BlockInfo& block_info(std::string_view block) {
   std::string known;
   for (const auto& info : infos()) known += (known.empty() ? "" : ", ") + info.name;
   throw Error(fmt::format("unknown circuit block '{}' (known: {})", block, known));
-}
-
-double input_load(Level level, std::string_view block, const MachineProfile& machine) {
-  const BlockInfo& info = block_info(block);
-  check_machine(level, machine);
-  const double inf = std::numeric_limits<double>::infinity();
-  const double r = machine.input_resistance;
-  if (level == Level::ideal) return inf;  // E and B sources draw nothing
-  using F = HardwareFigures;
-  if (info.name == "potentiometer") return machine.potentiometer_resistance;
-  if (info.name == "dead_zone") return r / 40;
-  if (info.name == "limiter") return r / 10;
-  if (info.name == "abs") return r / 20;
-  if (info.name == "halfwave") return r / 10;
-  if (info.name == "comparator") return F::comparator_r1 + comparator_r2(machine);
-  return inf;  // switch
 }
 
 std::string render_models(Level level, const MachineProfile& machine) {

@@ -39,15 +39,6 @@ const std::vector<std::string>& block_names();
 /// Throws Error on an unknown name.
 const BlockInfo& block_info(std::string_view block);
 
-/// The resistance the block's `in` pin presents, to ground or a virtual
-/// ground: the load a hardware potentiometer driving it sees (the composer
-/// needs it for the loaded setting). +infinity where the input draws no
-/// current (every ideal-level block except potentiometer) or passes it on
-/// (switch: whatever its output drives). Hardware: potentiometer Rp, dead_zone
-/// R/40, limiter R/10, abs R/20, halfwave R/10, comparator R1 + R2 (to its
-/// own output). Integrator and summer inputs are R/n at both levels.
-double input_load(Level level, std::string_view block, const MachineProfile& machine);
-
 /// The input offset voltage of the hardware op-amp model (TL071 class), V:
 /// it makes every hardware integrator drift, which `verify` uses to diagnose.
 double hardware_opamp_offset_volts();

@@ -45,9 +45,8 @@ class Builder {
   }
 
   void amplifier(std::string name, bool integrator, std::string out, std::vector<AmplifierInput> in,
-                 std::string comment, std::string initial = "") {
-    c_.amplifiers.push_back({std::move(name), integrator, std::move(out), std::move(in),
-                             std::move(initial), std::move(comment)});
+                 std::string comment) {
+    c_.amplifiers.push_back({std::move(name), integrator, std::move(out), std::move(in), std::move(comment)});
   }
   void inverter(const std::string& name, const std::string& from, const std::string& out,
                 const std::string& comment) {
@@ -81,8 +80,6 @@ class Builder {
     return name == "alpha6" || name == "alpha7" || name == "alpha12";
   }
 
-  std::string initial(const std::string& param) { return has(param) ? param : ""; }
-
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
     std::vector<AmplifierInput> in;
     if (has("alpha2")) {
@@ -91,7 +88,7 @@ class Builder {
     }
     if (has("alpha1")) in.push_back(through("sign_p", "alpha1"));
     in.push_back(through("m", "alpha3"));
-    amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm", initial("alpha6"));
+    amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
     c_.initial_conditions.emplace_back("wp", has("alpha6") ? "alpha6" : "0");
   }
 
@@ -111,7 +108,7 @@ class Builder {
       c_.sources.emplace_back("ref_p", 1.0);
       c_.sources.emplace_back("ref_n", -1.0);
     }
-    amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm", initial("alpha7"));
+    amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
     c_.initial_conditions.emplace_back("ws", has("alpha7") ? "alpha7" : "0");
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
   }
@@ -119,8 +116,7 @@ class Builder {
   void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)
     amplifier("sum_dw", false, "dw_n", {through("wp", "alpha8"), through("ws_n", "alpha9")},
               "(6.3) relative speed: dw_n = -dphi'/dphi'_m");
-    amplifier("int_x", true, "x", {through("dw_n", "alpha10")}, "(6.4) twist: x = +dphi/dphi_m",
-              initial("alpha12"));
+    amplifier("int_x", true, "x", {through("dw_n", "alpha10")}, "(6.4) twist: x = +dphi/dphi_m");
     c_.initial_conditions.emplace_back("x", has("alpha12") ? "alpha12" : "0");
     if (patch_.dead_zone) {
       block("dz", "dead_zone", {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
@@ -201,10 +197,10 @@ class Builder {
 
   void add_probes() {
     const Maxima& m = patch_.maxima;
-    c_.probes["omega_p"] = {"wp", 1, m.speed_primary};
-    c_.probes["omega_s"] = {"ws", 1, m.speed_secondary};
-    c_.probes["dphi"] = {"x", 1, m.twist};
-    c_.probes["m0"] = {"m", 1, m.torque};
+    c_.probes["omega_p"] = {"wp", m.speed_primary};
+    c_.probes["omega_s"] = {"ws", m.speed_secondary};
+    c_.probes["dphi"] = {"x", m.twist};
+    c_.probes["m0"] = {"m", m.torque};
   }
 
   static std::string format_band(double band) { return fmt::format("{}", band); }

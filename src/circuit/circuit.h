@@ -30,8 +30,7 @@ struct Amplifier {
   bool integrator = false;
   std::string out;    ///< output node
   std::vector<AmplifierInput> inputs;
-  std::string initial_value;  ///< .param name of the initial condition (integrators)
-  std::string comment;        ///< what it computes, with the paper's equation
+  std::string comment;  ///< what it computes, with the paper's equation
 };
 
 /// A fixed-pin block from the library (dead_zone, limiter, abs, halfwave,
@@ -44,11 +43,10 @@ struct FunctionBlock {
   std::string comment;
 };
 
-/// How a machine variable of the comparison is read off the deck: the node,
-/// its sign (inverted nodes read −1) and the physical value of 1 MU.
+/// How a machine variable of the comparison is read off the deck: the node
+/// (each probe reads a non-inverted one) and the physical value of 1 MU.
 struct Probe {
   std::string node;
-  double sign = 1;
   double full_scale = 1;
 };
 
