@@ -1,12 +1,24 @@
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gearpatch {
 
 struct GearParameters;
 struct ScalingInput;
+
+/// Which maximum: the scene's [maxima] keys, in the order reports list them.
+enum class Maximum {
+  drive_torque, speed_primary, speed_secondary, relative_speed, contact_twist, twist, torque,
+};
+/// "drive_torque" …: the key in the scene's [maxima], the JSON and the table.
+std::string to_string(Maximum key);
+std::optional<Maximum> parse_maximum(std::string_view name);
+/// "φ̇pm   rad/s": the paper's symbol and the unit, for the table.
+std::string symbol(Maximum key);
 
 /// The maxima of section 6 that amplitude scaling divides by (one machine
 /// unit stands for each), physical units, with a sentence per value saying
@@ -22,11 +34,12 @@ struct Maxima {
   double contact_twist = 0;    ///< Δφ'm
   double twist = 0;            ///< Δφm
   double torque = 0;           ///< M0m
-  std::map<std::string, std::string> basis;  ///< key → how the value was found
+  std::map<Maximum, std::string> basis;  ///< how each value was found
 
   /// key → value, in the order above (drive_torque only when > 0).
-  std::vector<std::pair<std::string, double>> entries() const;
-  double& at(const std::string& key);
+  std::vector<std::pair<Maximum, double>> entries() const;
+  double& at(Maximum key);
+  const double& at(Maximum key) const;
 };
 
 /// How the a-priori estimate is made.

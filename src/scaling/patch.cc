@@ -113,34 +113,37 @@ Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std:
   Maxima m = a;
   const double f = 1 + headroom;
   const std::string how = fmt::format("autoscaled: simulated peak × {:g}", f);
-  auto set = [&](const std::string& key, double peak) {
+  auto set = [&](Maximum key, double peak) {
     if (peak > 0) {
       m.at(key) = peak * f;
       m.basis[key] = how;
     } else {
-      notes.push_back(fmt::format("autoscale: {} stays 0 in the run; kept the a-priori maximum", key));
+      notes.push_back(fmt::format("autoscale: {} stays 0 in the run; kept the a-priori maximum",
+                                  to_string(key)));
     }
   };
-  if (a.drive_torque > 0) set("drive_torque", x.drive);
-  set("speed_primary", x.omega_p);
-  set("speed_secondary", x.omega_s);
-  set("relative_speed", x.rate);
+  if (a.drive_torque > 0) set(Maximum::drive_torque, x.drive);
+  set(Maximum::speed_primary, x.omega_p);
+  set(Maximum::speed_secondary, x.omega_s);
+  set(Maximum::relative_speed, x.rate);
   if (x.contact_twist > 0) {
-    set("contact_twist", x.contact_twist);
-    set("twist", x.dphi);
+    set(Maximum::contact_twist, x.contact_twist);
+    set(Maximum::twist, x.dphi);
   } else {
     notes.push_back("autoscale: the flanks never touch in the run; kept the a-priori twist maxima");
   }
-  set("torque", std::max({x.torque, x.spring, x.damping}));
+  set(Maximum::torque, std::max({x.torque, x.spring, x.damping}));
   return m;
 }
 
-const std::map<std::string, std::string>& scale_keys() {
-  static const std::map<std::string, std::string> keys = {
-      {"Wp", "speed_primary"}, {"Ws", "speed_secondary"}, {"DW", "relative_speed"},
-      {"X", "twist"}, {"X'", "contact_twist"}, {"m", "torque"}, {"drive", "drive_torque"},
-      {"dead_zone", "twist"}, {"spring", "torque"}, {"damping", "torque"},
-      {"tooth_friction", "torque"}, {"lock_reaction", "torque"}};
+/// The maximum each peak signal is scaled by.
+const std::map<std::string, Maximum>& scale_keys() {
+  static const std::map<std::string, Maximum> keys = {
+      {"Wp", Maximum::speed_primary}, {"Ws", Maximum::speed_secondary},
+      {"DW", Maximum::relative_speed}, {"X", Maximum::twist}, {"X'", Maximum::contact_twist},
+      {"m", Maximum::torque}, {"drive", Maximum::drive_torque}, {"dead_zone", Maximum::twist},
+      {"spring", Maximum::torque}, {"damping", Maximum::torque},
+      {"tooth_friction", Maximum::torque}, {"lock_reaction", Maximum::torque}};
   return keys;
 }
 
@@ -149,7 +152,7 @@ void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Pat
     if (fraction <= 1 + overload_tolerance) continue;
     auto key = scale_keys().find(signal);
     std::string fix = key == scale_keys().end() ? std::string("use --autoscale")
-        : fmt::format("raise maxima.{} to at least {:.4g} or use --autoscale", key->second,
+        : fmt::format("raise maxima.{} to at least {:.4g} or use --autoscale", to_string(key->second),
                       m.at(key->second) * fraction);
     patch.warnings.push_back(fmt::format("{} would overload: simulated peak {:.4g} MU, {:.1f} % over "
                                          "its scale; {}", signal, fraction, 100 * (fraction - 1), fix));

@@ -11,7 +11,7 @@ using nlohmann::json;
 
 json maxima_json(const Maxima& m) {
   json j = json::object();
-  for (const auto& [key, value] : m.entries()) j[key] = value;
+  for (const auto& [key, value] : m.entries()) j[to_string(key)] = value;
   return j;
 }
 
@@ -27,7 +27,8 @@ std::string to_json(const Patch& patch) {
   j["k0"] = patch.k0;
   j["unit_volts"] = patch.unit_volts;
   j["maxima"] = maxima_json(patch.maxima);
-  j["maxima_basis"] = patch.maxima.basis;
+  j["maxima_basis"] = json::object();
+  for (const auto& [key, how] : patch.maxima.basis) j["maxima_basis"][to_string(key)] = how;
   j["a_priori_maxima"] = maxima_json(patch.a_priori);
   j["potentiometers"] = json::array();
   for (const auto& p : patch.potentiometers)
@@ -69,16 +70,6 @@ std::string pad(const std::string& s, std::size_t width) {
   return w >= width ? s : s + std::string(width - w, ' ');
 }
 
-const char* symbol(const std::string& key) {
-  if (key == "drive_torque") return "M_am  N·m";
-  if (key == "speed_primary") return "φ̇pm   rad/s";
-  if (key == "speed_secondary") return "φ̇sm   rad/s";
-  if (key == "relative_speed") return "Δφ̇m   rad/s";
-  if (key == "contact_twist") return "Δφ'm  rad";
-  if (key == "twist") return "Δφm   rad";
-  return "M0m   N·m";
-}
-
 void maxima_section(const Patch& patch, std::string& out) {
   out += "maxima (the value 1 MU stands for):\n";
   Maxima a_priori = patch.a_priori;
@@ -86,7 +77,7 @@ void maxima_section(const Patch& patch, std::string& out) {
     auto basis = patch.maxima.basis.find(key);
     std::string how = basis == patch.maxima.basis.end() ? "" : basis->second;
     if (a_priori.at(key) != value) how += fmt::format(" (a priori {:.6g})", a_priori.at(key));
-    out += fmt::format("  {:<16} {} {:<11.6g} {}\n", key, pad(symbol(key), 12), value, how);
+    out += fmt::format("  {:<16} {} {:<11.6g} {}\n", to_string(key), pad(symbol(key), 12), value, how);
   }
 }
 

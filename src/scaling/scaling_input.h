@@ -6,6 +6,7 @@
 #include "machine/machine_profile.h"
 #include "model/gear_model.h"
 #include "model/gear_state.h"
+#include "scaling/maxima.h"
 
 namespace gearpatch {
 
@@ -20,9 +21,7 @@ struct ScalingInput {
   double duration = 1;        ///< s of real time
   std::optional<double> rated_torque;  ///< M_am from the drive's data
   std::optional<double> rated_speed;   ///< φ̇pm = φ̇sm from the drive's data
-  /// Overrides of the a-priori maxima, by Maxima key (drive_torque, speed_primary,
-  /// speed_secondary, relative_speed, contact_twist, twist, torque).
-  std::map<std::string, double> maxima;
+  std::map<Maximum, double> maxima;  ///< overrides of the a-priori maxima
   MachineProfile machine;
 };
 

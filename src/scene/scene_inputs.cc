@@ -38,7 +38,11 @@ ScalingInput scaling_input(const Scene& s) {
   in.duration = s.duration;
   in.rated_torque = s.rated_torque;
   in.rated_speed = s.rated_speed;
-  in.maxima = s.maxima;
+  for (const auto& [key, value] : s.maxima) {
+    const auto maximum = parse_maximum(key);
+    if (!maximum) throw Error(s.where("maxima." + key) + ": maxima." + key + ": unknown maximum");
+    in.maxima[*maximum] = value;
+  }
   in.machine = s.machine;
   return in;
 }
