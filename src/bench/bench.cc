@@ -202,8 +202,8 @@ std::array<double, 4> full_scales(const Scene& scene) {
   PatchOptions po;
   po.comparator_offset = circuit::comparator_offset(circuit::Level::ideal);
   const circuit::Circuit c = circuit::build_circuit(make_patch(scene, po), circuit::Level::ideal);
-  return {c.probes.at("omega_p").full_scale, c.probes.at("omega_s").full_scale,
-          c.probes.at("dphi").full_scale, c.probes.at("m0").full_scale};
+  return {c.probes.at(Signal::omega_p).full_scale, c.probes.at(Signal::omega_s).full_scale,
+          c.probes.at(Signal::dphi).full_scale, c.probes.at(Signal::m0).full_scale};
 }
 
 double scaled_difference(const Trajectory& reference, const Trajectory& other,

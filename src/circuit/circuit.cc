@@ -197,10 +197,10 @@ class Builder {
 
   void add_probes() {
     const Maxima& m = patch_.maxima;
-    c_.probes["omega_p"] = {"wp", m.speed_primary};
-    c_.probes["omega_s"] = {"ws", m.speed_secondary};
-    c_.probes["dphi"] = {"x", m.twist};
-    c_.probes["m0"] = {"m", m.torque};
+    c_.probes[Signal::omega_p] = {"wp", m.speed_primary};
+    c_.probes[Signal::omega_s] = {"ws", m.speed_secondary};
+    c_.probes[Signal::dphi] = {"x", m.twist};
+    c_.probes[Signal::m0] = {"m", m.torque};
   }
 
   static std::string format_band(double band) { return fmt::format("{}", band); }

@@ -6,6 +6,7 @@
 
 #include "circuit/block_library.h"
 #include "machine/machine_profile.h"
+#include "solver/signal.h"
 
 namespace gearpatch {
 struct Patch;
@@ -68,7 +69,7 @@ struct Circuit {
   /// operating point leaves it (op-amp offsets charge the capacitor).
   std::vector<std::pair<std::string, std::string>> initial_conditions;
   std::vector<std::string> omitted;             ///< blocks left out, with the reason
-  std::map<std::string, Probe> probes;          ///< omega_p, omega_s, dphi, m0
+  std::map<Signal, Probe> probes;              ///< one per compared signal
   double beta = 1;                              ///< machine time = β · real time
   double duration = 1;                          ///< real time, s
 

@@ -9,13 +9,6 @@
 #include "common/gnuplot.h"
 
 namespace gearpatch::verify {
-namespace {
-
-const char* unit_of(const std::string& signal) {
-  return signal == "dphi" ? "rad" : signal == "m0" ? "N·m" : "rad/s";
-}
-
-}  // namespace
 
 std::string to_table(const VerifyResult& r) {
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {}\n\n",
@@ -23,13 +16,13 @@ std::string to_table(const VerifyResult& r) {
   t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12}  {}\n", "signal", "full scale", "unit",
                    "max error %", "rms error %", "worst at t [s]");
   for (const auto& e : r.comparison.signals)
-    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f}  {:.6g}\n", e.name, e.full_scale,
-                     unit_of(e.name), 100 * e.max_error, 100 * e.rms_error, e.time_of_max);
+    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f}  {:.6g}\n", to_string(e.signal),
+                     e.full_scale, unit(e.signal), 100 * e.max_error, 100 * e.rms_error, e.time_of_max);
   for (const auto& e : r.comparison.signals)
     if (e.jumps > 0)
       t += fmt::format("  {} jumps {} times in the reference: compared outside +-{:.4g} s of each "
                        "({} samples left out; the impact times check those instants)\n",
-                       e.name, e.jumps, r.jump_window, e.excluded);
+                       to_string(e.signal), e.jumps, r.jump_window, e.excluded);
   const auto& c = r.comparison;
   if (!c.impacts.empty())
     t += fmt::format("\nimpacts: reference {}, circuit {}; worst time shift {:.4f} % of the run\n",
@@ -62,7 +55,7 @@ std::string to_json(const VerifyResult& r) {
   j["beta"] = r.beta;
   j["ngspice_seconds"] = r.ngspice_seconds;
   for (const auto& e : r.comparison.signals)
-    j["signals"][e.name] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
+    j["signals"][to_string(e.signal)] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
                             {"rms_error", e.rms_error}, {"time_of_max", e.time_of_max},
                             {"jumps", e.jumps}, {"excluded_samples", e.excluded}};
   j["jump_window"] = r.jump_window;
@@ -88,8 +81,9 @@ void write_plot(const VerifyResult& r, const std::string& path) {
   script += "EOD\n$circuit << EOD\n";
   const auto& c = r.circuit;
   for (std::size_t i = 0; i < c.t.size(); ++i)
-    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at("omega_p")[i], c.signals.at("omega_s")[i],
-                          c.signals.at("dphi")[i], c.signals.at("m0")[i]);
+    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at(Signal::omega_p)[i],
+                          c.signals.at(Signal::omega_s)[i], c.signals.at(Signal::dphi)[i],
+                          c.signals.at(Signal::m0)[i]);
   script += fmt::format("EOD\nset multiplot layout 4,1 title 'gearpatch verify {} ({}): {}'\nset grid\n"
                         "set key right top\n",
                         r.scene, level_name(r.level), r.passed ? "PASS" : "FAIL");

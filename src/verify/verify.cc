@@ -23,7 +23,7 @@ void judge(VerifyResult& r) {
   for (const SignalError& e : r.comparison.signals)
     if (e.max_error > r.tolerance)
       r.failures.push_back(fmt::format(
-          "{}: error {:.3g} % of full scale at t = {:.6g} s (reference {:.6g}, circuit {:.6g})", e.name,
+          "{}: error {:.3g} % of full scale at t = {:.6g} s (reference {:.6g}, circuit {:.6g})", to_string(e.signal),
           100 * e.max_error, e.time_of_max, e.reference_at_max, e.circuit_at_max));
   for (const ImpactTime& i : r.comparison.impacts)
     if (i.circuit < 0)
@@ -73,9 +73,8 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
 
   if (run.failure) throw *run.failure;  // after the simulator, whose failure comes first
   r.circuit = unscale(vectors, circuit, scene.machine.unit_volts);
-  std::vector<std::pair<std::string, double>> scales;
-  for (const char* name : {"omega_p", "omega_s", "dphi", "m0"})
-    scales.emplace_back(name, circuit.probes.at(name).full_scale);
+  std::vector<std::pair<Signal, double>> scales;
+  for (Signal signal : all_signals) scales.emplace_back(signal, circuit.probes.at(signal).full_scale);
   r.jump_window = r.tolerance * scene.duration;
   r.comparison = compare(r.reference, r.circuit, model, scales, scene.duration, r.jump_window);
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
