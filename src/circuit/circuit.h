@@ -6,6 +6,7 @@
 
 #include "circuit/block_library.h"
 #include "machine/machine_profile.h"
+#include "scaling/setting.h"
 #include "solver/signal.h"
 
 namespace gearpatch {
@@ -15,12 +16,12 @@ struct Patch;
 namespace gearpatch::circuit {
 
 /// One input of an integrator or summer: the node it takes, through which
-/// coefficient potentiometer (a Patch name such as "alpha3", or empty for a
-/// direct weight-1 input), at which weight, and — for the comparator-switched
-/// paths of blocks 7/9 — the control node of the switch behind the potentiometer.
+/// coefficient potentiometer (none for a direct weight-1 input), at which
+/// weight, and — for the comparator-switched paths of blocks 7/9 — the
+/// control node of the switch behind the potentiometer.
 struct AmplifierInput {
   std::string from;
-  std::string potentiometer;
+  std::optional<Setting> potentiometer;
   int weight = 1;
   std::string switched_by;
 };
@@ -61,13 +62,13 @@ struct Circuit {
   std::vector<Amplifier> amplifiers;
   std::vector<FunctionBlock> blocks;
   std::vector<std::pair<std::string, double>> sources;  ///< node → machine units (DC)
-  std::vector<std::pair<std::string, double>> parameters;  ///< .param name → value (ideal)
-  std::map<std::string, double> dial_settings;  ///< potentiometer → dial position (hardware)
-  std::map<std::string, int> weights;           ///< potentiometer → input weight
-  /// node → .param name of its initial value, or "0": a machine sets every
-  /// integrator in IC mode, and an unset one would start wherever the
+  std::vector<std::pair<Setting, double>> parameters;  ///< one .param each → value (ideal)
+  std::map<Setting, double> dial_settings;  ///< potentiometer → dial position (hardware)
+  std::map<Setting, int> weights;           ///< potentiometer → input weight
+  /// node → the setting of its initial value, or none for 0: a machine sets
+  /// every integrator in IC mode, and an unset one would start wherever the
   /// operating point leaves it (op-amp offsets charge the capacitor).
-  std::vector<std::pair<std::string, std::string>> initial_conditions;
+  std::vector<std::pair<std::string, std::optional<Setting>>> initial_conditions;
   std::vector<std::string> omitted;             ///< blocks left out, with the reason
   std::map<Signal, Probe> probes;              ///< one per compared signal
   double beta = 1;                              ///< machine time = β · real time

@@ -28,7 +28,7 @@ std::string parameters(const Circuit& c, Level level) {
     auto dial = c.dial_settings.find(name);
     const double shown = level == Level::hardware && dial != c.dial_settings.end() ? dial->second : value;
     auto weight = c.weights.find(name);
-    text += fmt::format(".param {}={}", name, format_number(shown));
+    text += fmt::format(".param {}={}", to_string(name), format_number(shown));
     if (weight != c.weights.end()) text += fmt::format("  $ into a weight-{} input", weight->second);
     text += "\n";
   }
@@ -41,7 +41,7 @@ std::string library(const Circuit& c, Level level, const MachineProfile& m) {
   for (const auto& b : c.blocks) kinds.insert(b.block);
   for (const auto& a : c.amplifiers)
     for (const auto& in : a.inputs) {
-      if (!in.potentiometer.empty()) kinds.insert("potentiometer");
+      if (in.potentiometer) kinds.insert("potentiometer");
       if (!in.switched_by.empty()) kinds.insert("switch");
     }
   for (const auto& kind : kinds) text += "\n" + render_block(level, kind, m);
@@ -61,10 +61,10 @@ std::string amplifier_instances(const Amplifier& a) {
   for (std::size_t k = 0; k < a.inputs.size(); ++k) {
     const AmplifierInput& in = a.inputs[k];
     std::string node = in.from;
-    if (!in.potentiometer.empty()) {
+    if (in.potentiometer) {
       const std::string wiper = fmt::format("{}_{}", a.name, k + 1);
       text += fmt::format("Xpot_{} {} {} gp_potentiometer params: setting={{{}}}\n", wiper, node, wiper,
-                          in.potentiometer);
+                          to_string(*in.potentiometer));
       node = wiper;
     }
     if (!in.switched_by.empty()) {
@@ -101,7 +101,8 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
   const double stop = c.beta * c.duration;
   std::string text = "\n* Initial conditions (integrators in IC mode), machine units x unit volts\n";
   for (const auto& [node, param] : c.initial_conditions)
-    text += fmt::format(".ic v({})={{{}*{}}}\n", node, param, format_number(m.unit_volts));
+    text += fmt::format(".ic v({})={{{}*{}}}\n", node, param ? to_string(*param) : "0",
+                        format_number(m.unit_volts));
   text += fmt::format(
       "\n* Transient in machine time: {} s of real time x beta {}\n"
       ".options method={} reltol={} abstol=1e-12 vntol=1e-9 chgtol=1e-16 itl4=100\n"

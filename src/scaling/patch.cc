@@ -22,7 +22,7 @@ double loaded_setting(double alpha, double load_ratio) {
   return 2 * a * l / (b + std::sqrt(b * b + 4 * a * a * l));
 }
 
-const Potentiometer* Patch::find(std::string_view name) const {
+const Potentiometer* Patch::find(Setting name) const {
   for (const auto& p : potentiometers)
     if (p.name == name) return &p;
   return nullptr;
@@ -41,9 +41,10 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
                        needed_beta);
   if (c.kind == CoefficientKind::initial)
     return fmt::format("the initial value exceeds its maximum: raise maxima.{}",
-                       c.name == "alpha6" ? "speed_primary" : c.name == "alpha7" ? "speed_secondary"
-                                                                                 : "twist");
-  if (c.name == "alpha11") {
+                       c.name == Setting::alpha6   ? "speed_primary"
+                       : c.name == Setting::alpha7 ? "speed_secondary"
+                                                   : "twist");
+  if (c.name == Setting::alpha11) {
     // Raising Δφ'm fits the potentiometer but scales the contact torque up with
     // it, which forces a far larger β (backlash-wide: 10000) and fails verify
     // by 70 %, so that is not the first advice.
@@ -57,7 +58,7 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
         m.contact_twist, m.twist, n, (n - 1) * m.contact_twist,
         n > 1 ? fmt::format(" to ε/(n − 1) = {:.4g} rad", half_backlash / (n - 1)) : std::string());
   }
-  if (c.name == "alpha8" || c.name == "alpha9")
+  if (c.name == Setting::alpha8 || c.name == Setting::alpha9)
     return "the speed maximum is large against Δφ̇m: raise maxima.relative_speed or lower "
            "maxima.speed_primary/speed_secondary";
   return "raise maxima.torque, or use a machine with larger input weights";
@@ -68,10 +69,10 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
 std::string culprit(const Coefficient& c) {
   if (c.kind == CoefficientKind::integrator) return "machine.time_scale";
   if (c.kind == CoefficientKind::initial)
-    return c.name == "alpha6" ? "initial.speed_primary"
-         : c.name == "alpha7" ? "initial.speed_secondary" : "initial.twist";
-  if (c.name == "alpha11") return "gear.backlash";
-  if (c.name == "alpha8" || c.name == "alpha9") return "maxima.relative_speed";
+    return c.name == Setting::alpha6 ? "initial.speed_primary"
+         : c.name == Setting::alpha7 ? "initial.speed_secondary" : "initial.twist";
+  if (c.name == Setting::alpha11) return "gear.backlash";
+  if (c.name == Setting::alpha8 || c.name == Setting::alpha9) return "maxima.relative_speed";
   return "maxima.torque";
 }
 
@@ -89,7 +90,7 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
   if (fits == weights.end()) {
     const double needed = beta * size / weights.back();
     throw Error::about_scene(culprit(c), fmt::format(
-        "{} = {} = {:.6g}{} is beyond the largest input weight {}{}: {}", c.name, c.formula, table,
+        "{} = {} = {:.6g}{} is beyond the largest input weight {}{}: {}", to_string(c.name), c.formula, table,
         integrator && machine.integrator_constant != 1
             ? fmt::format(" (÷ k0 → {:.6g})", coefficient) : "",
         weights.back(), integrator ? fmt::format(" at β = {:g}", beta) : "",
@@ -185,19 +186,10 @@ void check_and_autoscale(const GearParameters& p, const PatchOptions& o, const P
   overload_warnings(patch.bounded_peaks, patch.maxima, patch);
 }
 
-/// Table 1's order: alpha1 … alpha14, the extensions, then a, delta1, delta2.
-int rank(const std::string& name) {
-  static const std::vector<std::string> tail = {"alpha_tooth", "alpha_load", "alpha_lock",
-                                                "a", "delta1", "delta2"};
-  auto it = std::find(tail.begin(), tail.end(), name);
-  if (it != tail.end()) return 100 + static_cast<int>(it - tail.begin());
-  return std::stoi(name.substr(5));
-}
-
 void add_notes(const ScalingInput& s, const GearParameters& p, const PatchOptions& o, const Table1& t,
                Patch& patch) {
   for (const auto& c : t.entries)
-    if (!c.remark.empty()) patch.notes.push_back(c.name + ": " + c.remark);
+    if (!c.remark.empty()) patch.notes.push_back(to_string(c.name) + ": " + c.remark);
   if (patch.k0 != 1)
     patch.notes.push_back(fmt::format("integrator coefficients are Table 1's values (k0 = 1) divided "
                                       "by this machine's k0 = {:g}", patch.k0));
@@ -236,9 +228,9 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
                              "(1/(n·k0·β) = {:.3g} s)",
                              ts.beta, strongest * k0, 100 * lock_catch_fraction, 1 / (strongest * k0 * ts.beta));
     for (const auto& c : t.entries)
-      if (c.kind == CoefficientKind::integrator && c.name != "alpha_lock" && c.rate / ts.beta / k0 < 0.1)
+      if (c.kind == CoefficientKind::integrator && c.name != Setting::alpha_lock && c.rate / ts.beta / k0 < 0.1)
         ts.warnings.push_back(fmt::format("{} = {:.3g} at β = {:g} is below 0.1: hard to set precisely",
-                                          c.name, c.rate / ts.beta / k0, ts.beta));
+                                          to_string(c.name), c.rate / ts.beta / k0, ts.beta));
   } else if (explicit_beta && ts.beta < needed) {
     ts.warnings.push_back(fmt::format(
         "at β = {:g} the self-locking reaction needs {:.3g} s to catch the load ({:.2g} % of the run): "
@@ -246,7 +238,7 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
         100 / (strongest * k0 * ts.beta * s.duration), needed, 100 * lock_catch_fraction));
   }
   for (auto& c : t.entries)
-    if (c.name == "alpha_lock") {
+    if (c.name == Setting::alpha_lock) {
       c.rate = strongest * k0 * ts.beta;
       c.formula = "M_Rem/(Θs·β·φ̇sm), M_Rem the strongest the machine dials";
       c.remark = "the paper's k_Re → ∞: the reaction (6.7) is dialled as strong as the machine "
@@ -286,7 +278,7 @@ Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given
 
   Table1 t = table1(s, patch.maxima);
   std::stable_sort(t.entries.begin(), t.entries.end(),
-                   [](const auto& a, const auto& b) { return rank(a.name) < rank(b.name); });
+                   [](const auto& a, const auto& b) { return a.name < b.name; });  // Table 1's order
   std::vector<IntegratorRate> rates;
   for (const auto& c : t.entries)
     if (c.kind == CoefficientKind::integrator) rates.push_back({c.name, c.rate});
@@ -302,7 +294,7 @@ Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given
   if (p.self_locking) patch.delta2 = o.comparator_offset;
   patch.unused = t.unused;
   std::stable_sort(patch.unused.begin(), patch.unused.end(),
-                   [](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   add_notes(s, p, o, t, patch);
   return patch;
 }

@@ -10,6 +10,7 @@
 #include "model/gear_state.h"
 #include "scaling/maxima.h"
 #include "scaling/peaks.h"
+#include "scaling/setting.h"
 
 namespace gearpatch {
 
@@ -23,7 +24,8 @@ struct ScalingInput;
 /// alpha12) have weight 1 and a signed coefficient: a negative one is taken
 /// from the −1 MU reference (`feeds` says which).
 struct Potentiometer {
-  std::string name, formula, feeds;
+  Setting name{};
+  std::string formula, feeds;
   double coefficient = 0, setting = 0, weight = 1, loaded_setting = 0;
 };
 
@@ -58,7 +60,7 @@ struct Patch {
   std::vector<Potentiometer> potentiometers;
   std::optional<double> dead_zone;  ///< a = ε/Δφm, MU; empty without backlash
   double delta1 = 0, delta2 = 0;    ///< comparator offsets, MU (0 when unused)
-  std::vector<std::pair<std::string, std::string>> unused;  ///< name → reason
+  std::vector<std::pair<Setting, std::string>> unused;  ///< setting → reason
   std::map<std::string, double> peaks;          ///< signals that own a scale (Wp, Ws, DW, X, X', m, drive)
   std::map<std::string, double> bounded_peaks;  ///< dead zone, spring, damping, friction, lock
   std::map<std::string, double> a_priori_peaks; ///< `peaks` against the a-priori maxima
@@ -66,7 +68,7 @@ struct Patch {
   std::vector<std::string> warnings;  ///< overloads, hard-to-set coefficients, fast dynamics
   std::vector<std::string> notes;     ///< how the numbers were found
 
-  const Potentiometer* find(std::string_view name) const;
+  const Potentiometer* find(Setting name) const;
 };
 
 /// Settings for the scene: a-priori maxima (section 6), β, Table 1 split into

@@ -32,7 +32,7 @@ std::string to_json(const Patch& patch) {
   j["a_priori_maxima"] = maxima_json(patch.a_priori);
   j["potentiometers"] = json::array();
   for (const auto& p : patch.potentiometers)
-    j["potentiometers"].push_back({{"name", p.name}, {"formula", p.formula},
+    j["potentiometers"].push_back({{"name", to_string(p.name)}, {"formula", p.formula},
                                    {"coefficient", p.coefficient}, {"setting", p.setting},
                                    {"weight", static_cast<int>(p.weight)},
                                    {"loaded_setting", p.loaded_setting}, {"feeds", p.feeds}});
@@ -40,7 +40,7 @@ std::string to_json(const Patch& patch) {
   j["delta1"] = optional_number(patch.delta1 > 0, patch.delta1);
   j["delta2"] = optional_number(patch.delta2 > 0, patch.delta2);
   j["unused"] = json::array();
-  for (const auto& [name, reason] : patch.unused) j["unused"].push_back({{"name", name}, {"reason", reason}});
+  for (const auto& [name, reason] : patch.unused) j["unused"].push_back({{"name", to_string(name)}, {"reason", reason}});
   j["peaks"] = patch.peaks;
   j["bounded_peaks"] = patch.bounded_peaks;
   j["a_priori_peaks"] = patch.a_priori_peaks;
@@ -86,7 +86,7 @@ void settings_section(const Patch& patch, std::string& out) {
                      "  {:<12} {:>11} {:>8} {:>3} {:>8}   {} feeds\n", "name", "value α·n", "α", "n",
                      "loaded", pad("formula (Table 1)", 42));
   for (const auto& p : patch.potentiometers)
-    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}\n", p.name, p.coefficient,
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}\n", to_string(p.name), p.coefficient,
                        p.setting, static_cast<int>(p.weight), p.loaded_setting, pad(p.formula, 42),
                        p.feeds);
   if (patch.dead_zone)
@@ -101,7 +101,7 @@ void settings_section(const Patch& patch, std::string& out) {
                        "comparators (blocks 16/17)\n", "delta2", patch.delta2, patch.delta2, "", "",
                        pad("by experiment (default)", 42));
   if (!patch.unused.empty()) out += "\nleft out:\n";
-  for (const auto& [name, reason] : patch.unused) out += fmt::format("  {:<12} {}\n", name, reason);
+  for (const auto& [name, reason] : patch.unused) out += fmt::format("  {:<12} {}\n", to_string(name), reason);
 }
 
 void peaks_section(const Patch& patch, std::string& out) {
