@@ -78,11 +78,11 @@ TEST_CASE("a frictionless deck has no friction, absolute-value or self-locking b
     for (Level level : {Level::ideal, Level::hardware}) {
       INFO(name << " " << level_name(level));
       const Generated g = generate(name, level);
-      for (const char* block : {"limiter", "abs", "halfwave"}) {
+      for (BlockKind block : {BlockKind::limiter, BlockKind::abs, BlockKind::halfwave}) {
         CHECK(!g.circuit.uses(block));
-        CHECK(count(g.deck, "gp_" + std::string(block)) == 0);
+        CHECK(count(g.deck, "gp_" + to_string(block)) == 0);
       }
-      CHECK(g.circuit.uses("dead_zone"));
+      CHECK(g.circuit.uses(BlockKind::dead_zone));
       CHECK(count(g.deck, "left out: block 2 primary bearing friction") == 1);
       CHECK(count(g.deck, "left out: blocks 16/17 self-locking") == 1);
     }
@@ -91,10 +91,10 @@ TEST_CASE("a frictionless deck has no friction, absolute-value or self-locking b
 TEST_CASE("the self-locking deck has the friction, absolute-value and self-locking blocks", "[netlist]") {
   for (Level level : {Level::ideal, Level::hardware}) {
     const Generated g = generate("bild6c", level);
-    CHECK(g.circuit.uses("limiter"));    // block 16, the steep characteristic
-    CHECK(g.circuit.uses("abs"));        // block 8, |M0| for the tooth friction
-    CHECK(g.circuit.uses("halfwave"));   // the reaction's two halves
-    CHECK(g.circuit.uses("comparator")); // block 17
+    CHECK(g.circuit.uses(BlockKind::limiter));    // block 16, the steep characteristic
+    CHECK(g.circuit.uses(BlockKind::abs));        // block 8, |M0| for the tooth friction
+    CHECK(g.circuit.uses(BlockKind::halfwave));   // the reaction's two halves
+    CHECK(g.circuit.uses(BlockKind::comparator)); // block 17
     CHECK(count(g.deck, "block 16") >= 1);
     CHECK(count(g.deck, ".param alpha_lock=") == 1);
   }
@@ -103,8 +103,8 @@ TEST_CASE("the self-locking deck has the friction, absolute-value and self-locki
 TEST_CASE("zero backlash has no dead zone", "[netlist]") {
   const Scene scene = parse_scene(testing::gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1\n"), "nb.ini");
   const Generated g = generate(scene, Level::ideal);
-  CHECK(!g.circuit.uses("dead_zone"));
-  CHECK(!g.circuit.uses("comparator"));
+  CHECK(!g.circuit.uses(BlockKind::dead_zone));
+  CHECK(!g.circuit.uses(BlockKind::comparator));
   CHECK(count(g.deck, "left out: block 5 dead zone: no backlash") == 1);
 }
 

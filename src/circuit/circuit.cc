@@ -52,9 +52,9 @@ class Builder {
                 const std::string& comment) {
     amplifier(name, false, out, {{from, std::nullopt, 1, ""}}, comment);
   }
-  void block(std::string name, std::string kind, std::vector<std::string> nodes, std::string param,
+  void block(std::string name, BlockKind kind, std::vector<std::string> nodes, std::string param,
              std::string comment) {
-    c_.blocks.push_back({std::move(name), std::move(kind), std::move(nodes), std::move(param),
+    c_.blocks.push_back({std::move(name), kind, std::move(nodes), std::move(param),
                          std::move(comment)});
   }
   void omit(const std::string& what) { c_.omitted.push_back(what); }
@@ -119,7 +119,7 @@ class Builder {
     amplifier("int_x", true, "x", {through("dw_n", Setting::alpha10)}, "(6.4) twist: x = +dphi/dphi_m");
     c_.initial_conditions.emplace_back("x", initial(Setting::alpha12));
     if (patch_.dead_zone) {
-      block("dz", "dead_zone", {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
+      block("dz", BlockKind::dead_zone, {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
     } else {
       inverter("inv_x", "x", "dz_n", "no backlash: (6.9) is the identity, dz_n = -x");
       omit("block 5 dead zone: no backlash");
@@ -154,20 +154,20 @@ class Builder {
       inverter("inv_xp", "xp", "xp_n", "xp_n = -xp");
       has_xp_inverted_ = true;
     }
-    block("cmp_" + name + "_p", "comparator", {"xp", name + "_p"}, offset, what + ": xp > " + offset);
-    block("cmp_" + name + "_n", "comparator", {"xp_n", name + "_n"}, offset, what + ": xp < -" + offset);
+    block("cmp_" + name + "_p", BlockKind::comparator, {"xp", name + "_p"}, offset, what + ": xp > " + offset);
+    block("cmp_" + name + "_n", BlockKind::comparator, {"xp_n", name + "_n"}, offset, what + ": xp < -" + offset);
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
     const std::string band = format_band(friction_band(level_));
     if (has(Setting::alpha1)) {
       inverter("inv_wp", "wp", "wp_n", "wp_n = -wp");
-      block("sign_p", "limiter", {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
+      block("sign_p", BlockKind::limiter, {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
     } else {
       omit("block 2 primary bearing friction: k_Rp = 0");
     }
     if (has(Setting::alpha5))
-      block("sign_s", "limiter", {"ws_n", "sign_s"}, band, "block 14, (6.6): sign_s = +sign(ws)");
+      block("sign_s", BlockKind::limiter, {"ws_n", "sign_s"}, band, "block 14, (6.6): sign_s = +sign(ws)");
     else
       omit("block 14 secondary bearing friction: k_Rs = 0");
   }
@@ -177,10 +177,10 @@ class Builder {
       omit("block 8 |M0| and the tooth friction switch: eta_z = 1");
       return;
     }
-    block("abs_m", "abs", {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
+    block("abs_m", BlockKind::abs, {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
     inverter("inv_abs_m", "m_abs_n", "m_abs", "m_abs = |m|");
-    block("cmp_tooth_p", "comparator", {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
-    block("cmp_tooth_n", "comparator", {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
+    block("cmp_tooth_p", BlockKind::comparator, {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
+    block("cmp_tooth_n", BlockKind::comparator, {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
   }
 
   void add_self_locking() {  // (6.7): M_Re = k_Re·φ̇s when φ̇s·Δφ' < 0, k_Re → ∞
@@ -188,9 +188,9 @@ class Builder {
       omit("blocks 16/17 self-locking: not self-locking");
       return;
     }
-    block("lock_char", "limiter", {"ws", "lock_steep_n"}, format_band(lock_band(level_)),
+    block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(lock_band(level_)),
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
-    block("lock_half", "halfwave", {"lock_steep_n", "lock_below", "lock_above"}, "",
+    block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"}, "",
           "lock_below = min(clip, 0), lock_above = max(clip, 0)");
     contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
   }
@@ -219,12 +219,12 @@ std::vector<std::string> Circuit::amplifier_outputs() const {
   for (const auto& b : blocks)
     // Comparators, limiters and the half-wave of the limited lock reaction sit
     // at ±1 MU (or the rails) by design: that is their function, not an overload.
-    if (b.block == "dead_zone" || b.block == "abs")
+    if (b.block == BlockKind::dead_zone || b.block == BlockKind::abs)
       for (std::size_t i = 1; i < b.nodes.size(); ++i) nodes.push_back(b.nodes[i]);
   return nodes;
 }
 
-bool Circuit::uses(const std::string& kind) const {
+bool Circuit::uses(BlockKind kind) const {
   return std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) { return b.block == kind; });
 }
 

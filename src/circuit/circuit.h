@@ -39,7 +39,7 @@ struct Amplifier {
 /// comparator, switch, potentiometer) wired to deck nodes.
 struct FunctionBlock {
   std::string name;
-  std::string block;
+  BlockKind block{};
   std::vector<std::string> nodes;  ///< in the block's pin order
   std::string parameter;           ///< value expression for its one parameter, or empty
   std::string comment;
@@ -77,7 +77,7 @@ struct Circuit {
   /// Every node an op-amp drives in its linear range (the overload check);
   /// comparators, limiters and the lock's half-wave saturate by design.
   std::vector<std::string> amplifier_outputs() const;
-  bool uses(const std::string& block) const;
+  bool uses(BlockKind block) const;
 };
 
 /// The comparator offsets δ1, δ2 for a level, in machine units. The paper sets

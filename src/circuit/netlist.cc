@@ -1,6 +1,7 @@
 #include "circuit/netlist.h"
 
 #include <fmt/format.h>
+#include <map>
 #include <set>
 
 #include "common/numbers.h"
@@ -37,14 +38,15 @@ std::string parameters(const Circuit& c, Level level) {
 
 std::string library(const Circuit& c, Level level, const MachineProfile& m) {
   std::string text = "\n" + render_models(level, m);
-  std::set<std::string> kinds;
-  for (const auto& b : c.blocks) kinds.insert(b.block);
+  std::map<std::string, BlockKind> kinds;  // by name: the deck lists them alphabetically
+  auto add = [&](BlockKind kind) { kinds.emplace(to_string(kind), kind); };
+  for (const auto& b : c.blocks) add(b.block);
   for (const auto& a : c.amplifiers)
     for (const auto& in : a.inputs) {
-      if (in.potentiometer) kinds.insert("potentiometer");
-      if (!in.switched_by.empty()) kinds.insert("switch");
+      if (in.potentiometer) add(BlockKind::potentiometer);
+      if (!in.switched_by.empty()) add(BlockKind::analog_switch);
     }
-  for (const auto& kind : kinds) text += "\n" + render_block(level, kind, m);
+  for (const auto& [name, kind] : kinds) text += "\n" + render_block(level, kind, m);
   for (const auto& a : c.amplifiers) {
     std::vector<Input> pins;
     for (std::size_t k = 0; k < a.inputs.size(); ++k)
@@ -88,7 +90,7 @@ std::string program(const Circuit& c, const MachineProfile& m) {
   for (const auto& b : c.blocks) {
     text += fmt::format("* {}\nX{}", b.comment, b.name);
     for (const auto& node : b.nodes) text += " " + node;
-    text += " gp_" + b.block;
+    text += " gp_" + to_string(b.block);
     const auto& info = block_info(b.block);
     if (!info.param.empty() && !b.parameter.empty())
       text += fmt::format(" params: {}={}", info.param, b.parameter);
