@@ -477,6 +477,11 @@ TEST_CASE("a stiff undamped rattle is refused within a second naming the event l
   CHECK_THAT(why, Catch::Contains("too many events") && Catch::Contains("limit of 5000000") &&
                       Catch::Contains("run.duration") && Catch::Contains("restitution < 1"));
   CHECK(seconds < 1.0);
+  // The command line names the scene file the refusal is about.
+  std::string output;
+  const std::string file = testing::source_path("scenes/extremes/rattle.ini");
+  CHECK(testing::run_command(std::string(GEARPATCH_BINARY) + " simulate " + file, output) == 2);
+  CHECK_THAT(output, Catch::StartsWith("gearpatch simulate: " + file + ": too many events"));
 }
 
 TEST_CASE("a self-locked load following a receding flank is refused naming the lock", "[extremes]") {
