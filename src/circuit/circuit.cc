@@ -75,9 +75,10 @@ class Builder {
     if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, patch_.delta2);
     // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
     const Maxima& m = patch_.maxima;
-    if (has(Setting::alpha6)) c_.parameters.emplace_back(Setting::alpha6, patch_.initial.omega_p / m.speed_primary);
-    if (has(Setting::alpha7)) c_.parameters.emplace_back(Setting::alpha7, patch_.initial.omega_s / m.speed_secondary);
-    if (has(Setting::alpha12)) c_.parameters.emplace_back(Setting::alpha12, patch_.initial.dphi / m.twist);
+    const GearState& s0 = patch_.initial;
+    if (has(Setting::alpha6)) c_.parameters.emplace_back(Setting::alpha6, s0.omega_p / m.speed_primary);
+    if (has(Setting::alpha7)) c_.parameters.emplace_back(Setting::alpha7, s0.omega_s / m.speed_secondary);
+    if (has(Setting::alpha12)) c_.parameters.emplace_back(Setting::alpha12, s0.dphi / m.twist);
   }
 
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
@@ -99,7 +100,8 @@ class Builder {
       in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
       in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
     }
-    if (has(Setting::alpha_load)) in.push_back(through(patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load));
+    if (has(Setting::alpha_load))
+      in.push_back(through(patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load));
     if (has(Setting::alpha_lock)) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
       in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p"));
       in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n"));
@@ -154,8 +156,10 @@ class Builder {
       inverter("inv_xp", "xp", "xp_n", "xp_n = -xp");
       has_xp_inverted_ = true;
     }
-    block("cmp_" + name + "_p", BlockKind::comparator, {"xp", name + "_p"}, offset, what + ": xp > " + offset);
-    block("cmp_" + name + "_n", BlockKind::comparator, {"xp_n", name + "_n"}, offset, what + ": xp < -" + offset);
+    block("cmp_" + name + "_p", BlockKind::comparator, {"xp", name + "_p"}, offset,
+          what + ": xp > " + offset);
+    block("cmp_" + name + "_n", BlockKind::comparator, {"xp_n", name + "_n"}, offset,
+          what + ": xp < -" + offset);
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
