@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 
 using namespace gearpatch;
@@ -17,8 +17,8 @@ const char* kScene =
 
 void run(benchmark::State& state, SolverKind solver, double tolerance) {
   const Scene scene = parse_scene(kScene, "bench.ini");
-  const GearModel model(GearParameters::from_scene(scene));
-  RunSpec spec = RunSpec::from_scene(scene);
+  const GearModel model(gear_parameters(scene));
+  RunSpec spec = run_spec(scene);
   spec.output_step = spec.duration;  // measure the solver, not the output grid
   std::size_t events = 0;
   for (auto _ : state) {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 #include "solver/trajectory.h"
 
 namespace gearpatch::testing {

@@ -11,7 +11,7 @@
 #include "bench/bench.h"
 #include "bench/bench_report.h"
 #include "bench/pareto.h"
-#include "bench/quality.h"
+#include "circuit/quality.h"
 #include "common/atomic_file.h"
 #include "common/gnuplot.h"
 #include "common/error.h"
@@ -72,7 +72,7 @@ TEST_CASE("the Pareto front of a hand-made point set", "[bench]") {
 }
 
 TEST_CASE("three quality presets ordered from draft to precise with normal as the default", "[bench]") {
-  const auto& presets = bench::quality_presets();
+  const auto& presets = circuit::quality_presets();
   REQUIRE(presets.size() == 3);
   CHECK(presets[0].name == "draft");
   CHECK(presets[1].name == "normal");
@@ -94,21 +94,21 @@ TEST_CASE("three quality presets ordered from draft to precise with normal as th
     CHECK(p.measured_median_error <= p.measured_worst_error);
     CHECK(std::isfinite(p.measured_total_seconds));
   }
-  CHECK(bench::default_quality() == "normal");
-  CHECK(&bench::quality_preset("normal") == &presets[1]);
-  CHECK_THROWS_AS(bench::quality_preset("fast"), Error);
-  const std::string help = bench::quality_help();
+  CHECK(circuit::default_quality() == "normal");
+  CHECK(&circuit::quality_preset("normal") == &presets[1]);
+  CHECK_THROWS_AS(circuit::quality_preset("fast"), Error);
+  const std::string help = circuit::quality_help();
   for (const auto& p : presets) CHECK(help.find(p.name + " = ") != std::string::npos);
   CHECK(help.find("gearpatch bench") != std::string::npos);  // how to reproduce the numbers
-  CHECK(bench::quality_markdown().find("| `normal` (default) |") != std::string::npos);
+  CHECK(circuit::quality_markdown().find("| `normal` (default) |") != std::string::npos);
 }
 
 TEST_CASE("the sweep varies one knob at a time around the defaults", "[bench]") {
   const auto knobs = bench::standard_knobs();
-  const circuit::TransientControl normal = bench::quality_preset("normal").control;
+  const circuit::TransientControl normal = circuit::quality_preset("normal").control;
   REQUIRE(!knobs.empty());
   CHECK(knobs.front().family == "default");
-  CHECK(bench::same_control(knobs.front().control, normal));
+  CHECK(circuit::same_control(knobs.front().control, normal));
   std::map<std::string, int> families;
   std::set<std::string> presets;
   for (const auto& k : knobs) {
@@ -131,7 +131,7 @@ TEST_CASE("the sweep varies one knob at a time around the defaults", "[bench]") 
   CHECK(families["grid"] == 2);
   CHECK(families["level"] == 1);
   // A deck written without a preset (netlist, the library) is the deck verify checks.
-  CHECK(bench::same_control(normal, circuit::TransientControl{}));
+  CHECK(circuit::same_control(normal, circuit::TransientControl{}));
   CHECK(presets == std::set<std::string>{"draft", "normal", "precise"});
   CHECK(knobs.front().presets == std::vector<std::string>{"normal"});
 
@@ -315,7 +315,7 @@ TEST_CASE("the committed bench results hold the machine and agree with the prese
   CHECK(j["default_on_pareto_front"] == true);
   REQUIRE(j["presets"].size() == 3);
   for (const json& p : j["presets"]) {
-    const auto& preset = bench::quality_preset(p["name"].get<std::string>());
+    const auto& preset = circuit::quality_preset(p["name"].get<std::string>());
     INFO(preset.name);
     CHECK(p["worst_error"].get<double>() == Approx(preset.measured_worst_error).epsilon(0.01));
     CHECK(p["median_error"].get<double>() == Approx(preset.measured_median_error).epsilon(0.01));

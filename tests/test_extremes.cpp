@@ -35,8 +35,8 @@ struct Run {
 /// numbers everywhere, events in time order within the run.
 Run run(const Scene& scene, std::optional<double> output_step = std::nullopt,
         SolverKind solver = SolverKind::exact) {
-  GearModel model(GearParameters::from_scene(scene));
-  RunSpec spec = RunSpec::from_scene(scene);
+  GearModel model(gear_parameters(scene));
+  RunSpec spec = run_spec(scene);
   if (output_step) spec.output_step = *output_step;
   const auto start = std::chrono::steady_clock::now();
   Trajectory t = simulate(model, initial_state(scene), spec, solver, 1e-10);
@@ -449,7 +449,7 @@ TEST_CASE("self-locking at efficiency 1e-6 and exactly 1 never turns the load ba
     const Run r = run(name);
     CHECK(testing::check_never_against_engagement(r.model, r.trajectory) > 100);
   }
-  const GearModel one(GearParameters::from_scene(extreme("efficiency-one-locked")));
+  const GearModel one(gear_parameters(extreme("efficiency-one-locked")));
   CHECK(one.parameters().tooth_friction == 0.0);
   for (const auto& term : one.active_terms()) CHECK_THAT(term, !Catch::Contains("tooth"));
 }
@@ -477,6 +477,11 @@ TEST_CASE("a stiff undamped rattle is refused within a second naming the event l
   CHECK_THAT(why, Catch::Contains("too many events") && Catch::Contains("limit of 5000000") &&
                       Catch::Contains("run.duration") && Catch::Contains("restitution < 1"));
   CHECK(seconds < 1.0);
+  // The command line names the scene file the refusal is about.
+  std::string output;
+  const std::string file = testing::source_path("scenes/extremes/rattle.ini");
+  CHECK(testing::run_command(std::string(GEARPATCH_BINARY) + " simulate " + file, output) == 2);
+  CHECK_THAT(output, Catch::StartsWith("gearpatch simulate: " + file + ": too many events"));
 }
 
 TEST_CASE("a self-locked load following a receding flank is refused naming the lock", "[extremes]") {
@@ -508,9 +513,9 @@ TEST_CASE("numbers the solver cannot compute with are refused when the scene is 
   CHECK(why("backlash = 0") == "(no error)");
   const std::string rows = refusal([] {
     Scene s = parse_scene(testing::gear_scene("restitution = 0.5"), "rows.ini");
-    RunSpec spec = RunSpec::from_scene(s);
+    RunSpec spec = run_spec(s);
     spec.output_step = 1e-9;
-    GearModel model(GearParameters::from_scene(s));
+    GearModel model(gear_parameters(s));
     simulate(model, initial_state(s), spec);
   });
   CHECK_THAT(rows, Catch::Contains("run.output_step"));

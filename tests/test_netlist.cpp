@@ -28,8 +28,8 @@ Generated generate(const Scene& scene, Level level) {
   PatchOptions options;
   options.check_peaks = false;
   options.comparator_offset = comparator_offset(level);
-  Circuit c = build_circuit(scene, make_patch(scene, options), level);
-  std::string deck = render_netlist(c, level, scene.machine);
+  Circuit c = build_circuit(make_patch(scene, options), level);
+  std::string deck = render_netlist(c);
   return {std::move(c), std::move(deck)};
 }
 
@@ -80,11 +80,11 @@ TEST_CASE("a frictionless deck has no friction, absolute-value or self-locking b
     for (Level level : {Level::ideal, Level::hardware}) {
       INFO(name << " " << level_name(level));
       const Generated g = generate(name, level);
-      for (const char* block : {"limiter", "abs", "halfwave"}) {
+      for (BlockKind block : {BlockKind::limiter, BlockKind::abs, BlockKind::halfwave}) {
         CHECK(!g.circuit.uses(block));
-        CHECK(count(g.deck, "gp_" + std::string(block)) == 0);
+        CHECK(count(g.deck, "gp_" + to_string(block)) == 0);
       }
-      CHECK(g.circuit.uses("dead_zone"));
+      CHECK(g.circuit.uses(BlockKind::dead_zone));
       CHECK(count(g.deck, "left out: block 2 primary bearing friction") == 1);
       CHECK(count(g.deck, "left out: blocks 16/17 self-locking") == 1);
     }
@@ -93,10 +93,10 @@ TEST_CASE("a frictionless deck has no friction, absolute-value or self-locking b
 TEST_CASE("the self-locking deck has the friction, absolute-value and self-locking blocks", "[netlist]") {
   for (Level level : {Level::ideal, Level::hardware}) {
     const Generated g = generate("bild6c", level);
-    CHECK(g.circuit.uses("limiter"));    // block 16, the steep characteristic
-    CHECK(g.circuit.uses("abs"));        // block 8, |M0| for the tooth friction
-    CHECK(g.circuit.uses("halfwave"));   // the reaction's two halves
-    CHECK(g.circuit.uses("comparator")); // block 17
+    CHECK(g.circuit.uses(BlockKind::limiter));    // block 16, the steep characteristic
+    CHECK(g.circuit.uses(BlockKind::abs));        // block 8, |M0| for the tooth friction
+    CHECK(g.circuit.uses(BlockKind::halfwave));   // the reaction's two halves
+    CHECK(g.circuit.uses(BlockKind::comparator)); // block 17
     CHECK(count(g.deck, "block 16") >= 1);
     CHECK(count(g.deck, ".param alpha_lock=") == 1);
   }
@@ -105,8 +105,8 @@ TEST_CASE("the self-locking deck has the friction, absolute-value and self-locki
 TEST_CASE("zero backlash has no dead zone", "[netlist]") {
   const Scene scene = parse_scene(testing::gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1\n"), "nb.ini");
   const Generated g = generate(scene, Level::ideal);
-  CHECK(!g.circuit.uses("dead_zone"));
-  CHECK(!g.circuit.uses("comparator"));
+  CHECK(!g.circuit.uses(BlockKind::dead_zone));
+  CHECK(!g.circuit.uses(BlockKind::comparator));
   CHECK(count(g.deck, "left out: block 5 dead zone: no backlash") == 1);
 }
 
@@ -134,15 +134,15 @@ TEST_CASE("the deck refuses a setting that is not finite as an internal error", 
   const Scene scene = testing::example_scene("bild5b");
   PatchOptions o;
   o.check_peaks = false;
-  Circuit c = build_circuit(scene, make_patch(scene, o), Level::ideal);
+  Circuit c = build_circuit(make_patch(scene, o), Level::ideal);
   REQUIRE(!c.parameters.empty());
   c.parameters.front().second = std::nan("");
   try {
-    render_netlist(c, Level::ideal, scene.machine);
+    render_netlist(c);
     FAIL("a NaN setting was written into the deck");
   } catch (const Error& e) {
     CHECK(e.kind() == Error::Kind::internal);
-    CHECK_THAT(e.what(), Catch::Contains(".param " + c.parameters.front().first + "=nan"));
+    CHECK_THAT(e.what(), Catch::Contains(".param " + to_string(c.parameters.front().first) + "=nan"));
   }
 }
 

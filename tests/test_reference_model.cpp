@@ -22,8 +22,8 @@ struct Run {
 
 Run run(const std::string& text, double output_step = 1e-3) {
   Scene scene = parse_scene(text, "test.ini");
-  GearModel model(GearParameters::from_scene(scene));
-  RunSpec spec = RunSpec::from_scene(scene);
+  GearModel model(gear_parameters(scene));
+  RunSpec spec = run_spec(scene);
   spec.output_step = output_step;
   Trajectory t = simulate(model, initial_state(scene), spec);
   return {scene, model, std::move(t)};
@@ -123,8 +123,8 @@ TEST_CASE("a frictionless scene runs no friction logic", "[model]") {
 TEST_CASE("with friction the energy never increases", "[model][physics]") {
   for (std::string name : {"bild6a", "bild6b", "bild6c"}) {
     const Scene scene = testing::example_scene(name);
-    const GearModel model(GearParameters::from_scene(scene));
-    const Trajectory t = simulate(model, initial_state(scene), RunSpec::from_scene(scene));
+    const GearModel model(gear_parameters(scene));
+    const Trajectory t = simulate(model, initial_state(scene), run_spec(scene));
     double previous = INFINITY;
     for (const Sample& s : t.samples) {
       const GearState state{s.omega_p, s.omega_s, s.dphi};

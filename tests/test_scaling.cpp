@@ -17,8 +17,9 @@
 #include "common/error.h"
 #include "scaling/maxima.h"
 #include "scaling/patch.h"
-#include "support.h"
 #include "scene/scene.h"
+#include "scene/scene_inputs.h"
+#include "support.h"
 
 using namespace gearpatch;
 
@@ -61,7 +62,7 @@ std::vector<std::string> example_scenes() {
 }
 
 double setting_of(const Patch& patch, const std::string& name) {
-  const Potentiometer* p = patch.find(name);
+  const Potentiometer* p = patch.find(*parse_setting(name));
   REQUIRE(p != nullptr);
   return p->setting;
 }
@@ -140,7 +141,7 @@ TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
   REQUIRE(patch.potentiometers.size() == table.size());
   for (const auto& [name, value] : table) {
     INFO(name);
-    const Potentiometer* p = patch.find(name);
+    const Potentiometer* p = patch.find(*parse_setting(name));
     REQUIRE(p != nullptr);
     CHECK(p->coefficient == Approx(value).margin(1e-12));
     CHECK(p->weight == loaded.at(name).first);
@@ -152,7 +153,7 @@ TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
   CHECK(patch.delta1 == 5e-3);  // the default offset for a real machine
   CHECK(patch.delta2 == 0);
   std::set<std::string> unused;
-  for (const auto& [name, reason] : patch.unused) unused.insert(name);
+  for (const auto& [name, reason] : patch.unused) unused.insert(to_string(name));
   CHECK(unused == std::set<std::string>{"alpha_lock", "delta2"});
   // alpha1 and alpha5 at 0.02 are hard to set: said so.
   bool warned = false;
@@ -172,12 +173,12 @@ TEST_CASE("Without drive and friction the maxima are the paper's (6.11), (6.12)"
   // β: alpha3 = M0m/(Θp·φ̇pm) = 7.07/β must stay <= 10, so β = 1.
   CHECK(patch.beta == 1);
   CHECK(patch.beta_reason.find("alpha3") != std::string::npos);
-  std::map<std::string, std::string> unused(patch.unused.begin(), patch.unused.end());
-  CHECK(unused.count("alpha1"));
-  CHECK(unused.count("alpha5"));
-  CHECK(unused.at("alpha7").find("initial value 0") != std::string::npos);
-  CHECK(unused.count("alpha14"));
-  CHECK(patch.find("alpha1") == nullptr);
+  std::map<Setting, std::string> unused(patch.unused.begin(), patch.unused.end());
+  CHECK(unused.count(Setting::alpha1));
+  CHECK(unused.count(Setting::alpha5));
+  CHECK(unused.at(Setting::alpha7).find("initial value 0") != std::string::npos);
+  CHECK(unused.count(Setting::alpha14));
+  CHECK(patch.find(Setting::alpha1) == nullptr);
 }
 
 TEST_CASE("Every example scene: a-priori peaks within scale, autoscaled in [50 %, 100 %]", "[scaling]") {
@@ -227,7 +228,7 @@ TEST_CASE("Every setting is in [0, 1] and the loaded setting inverts the loading
       const Scene scene = load_scene(path);
       const Patch patch = make_patch(scene, o);
       for (const auto& p : patch.potentiometers) {
-        INFO(path << " " << p.name);
+        INFO(path << " " << to_string(p.name));
         CHECK(p.setting >= 0);
         CHECK(p.setting <= 1);
         CHECK(p.loaded_setting >= p.setting);
@@ -334,11 +335,11 @@ TEST_CASE("Automatic β: coefficients, and the machine's speed for a stiff coupl
   CHECK(patch.beta_reason.find("alpha10") != std::string::npos);
   CHECK(!patch.dead_zone);
   CHECK(patch.delta1 == 0);
-  std::map<std::string, std::string> unused(patch.unused.begin(), patch.unused.end());
-  CHECK(unused.count("a"));
-  CHECK(unused.count("delta1"));
-  REQUIRE(patch.find("alpha14"));
-  CHECK(patch.find("alpha14")->feeds.find("no switch") != std::string::npos);
+  std::map<Setting, std::string> unused(patch.unused.begin(), patch.unused.end());
+  CHECK(unused.count(Setting::a));
+  CHECK(unused.count(Setting::delta1));
+  REQUIRE(patch.find(Setting::alpha14));
+  CHECK(patch.find(Setting::alpha14)->feeds.find("no switch") != std::string::npos);
 
   // With a weight of 100 and some play the coefficients would allow β = 10
   // (alpha3 = 707/β <= 100), but the contact oscillation sqrt(c/Θ) = 1414 rad/s
@@ -354,17 +355,17 @@ TEST_CASE("Tooth friction moves η from alpha4 into alpha_tooth; self-locking ad
   const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild6c.ini"), {});
   const Maxima& m = patch.maxima;
   const double scale = 1.0 * patch.beta * m.speed_secondary;  // Θs·β·φ̇sm
-  CHECK(patch.find("alpha4")->coefficient == Approx(m.torque / scale).epsilon(1e-14));
-  CHECK(patch.find("alpha4")->formula == "η·M0m/(Θs·β·φ̇sm)");
-  CHECK(patch.find("alpha_tooth")->coefficient == Approx(0.6 * m.torque / scale).epsilon(1e-14));
+  CHECK(patch.find(Setting::alpha4)->coefficient == Approx(m.torque / scale).epsilon(1e-14));
+  CHECK(patch.find(Setting::alpha4)->formula == "η·M0m/(Θs·β·φ̇sm)");
+  CHECK(patch.find(Setting::alpha_tooth)->coefficient == Approx(0.6 * m.torque / scale).epsilon(1e-14));
   // k_Re → ∞: the reaction is dialled at the strongest the machine allows (α = 1 at
   // weight 10), and β is raised until it stops a full-scale speed within 0.1 % of
   // the 3 s run: 1/(10·k0·β) <= 3e-3 s → β >= 33.3 → 50.
-  CHECK(patch.find("alpha_lock")->coefficient == 10);
-  CHECK(patch.find("alpha_lock")->setting == 1);
+  CHECK(patch.find(Setting::alpha_lock)->coefficient == 10);
+  CHECK(patch.find(Setting::alpha_lock)->setting == 1);
   CHECK(patch.beta == 50);
   CHECK(patch.beta_reason.find("self-locking reaction") != std::string::npos);
-  CHECK(patch.find("alpha_lock")->coefficient * scale >= 10 * m.torque);  // M_Rem far above M0m
+  CHECK(patch.find(Setting::alpha_lock)->coefficient * scale >= 10 * m.torque);  // M_Rem far above M0m
   CHECK(patch.delta2 == 5e-3);
   bool explained = false;
   for (const auto& n : patch.notes) explained = explained || n.rfind("alpha4: set without η", 0) == 0;
@@ -379,8 +380,8 @@ TEST_CASE("The machine's integrator constant divides the integrator coefficients
   // alpha3 = 7.07/(β·k0) <= 10: β >= 0.0707 → 0.1, and alpha3 = 7.07/(0.1·10) = 7.07.
   CHECK(patch.beta == Approx(0.1));
   CHECK(patch.k0 == 10);
-  CHECK(patch.find("alpha3")->coefficient == Approx(100 * std::sqrt(0.005)).epsilon(1e-12));
-  CHECK(patch.find("alpha8")->coefficient == 1);  // a summer input: no k0, no β
+  CHECK(patch.find(Setting::alpha3)->coefficient == Approx(100 * std::sqrt(0.005)).epsilon(1e-12));
+  CHECK(patch.find(Setting::alpha8)->coefficient == 1);  // a summer input: no k0, no β
   bool noted = false;
   for (const auto& n : patch.notes) noted = noted || n.find("divided by this machine's k0") != std::string::npos;
   CHECK(noted);
@@ -459,4 +460,23 @@ TEST_CASE("gearpatch settings end to end", "[scaling]") {
     CHECK(fraction.get<double>() <= 1.0);
   }
   std::filesystem::remove(out);
+}
+
+TEST_CASE("a scaling refusal names the scene file and the line of the key to change", "[scaling]") {
+  // alpha11 beyond every weight: the line of the backlash to make smaller.
+  const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
+  CHECK_THROWS_WITH(make_patch(load_scene(wide)), Catch::StartsWith(wide + ":13: alpha11 = "));
+  // A twist maximum below the half backlash: the line of the override.
+  const Scene bad = parse_scene(testing::gear_scene("restitution = 0.5\nbacklash = 1",
+                                                    "[initial]\nspeed_primary = 1\n[maxima]\ntwist = 0.1"),
+                                "bad-maxima.ini");
+  CHECK_THROWS_WITH(make_patch(bad), Catch::StartsWith("bad-maxima.ini:10: twist maximum"));
+  // Below the scene the error knows no file, only the key it is about.
+  try {
+    make_patch(scaling_input(bad));
+    FAIL("no error");
+  } catch (const Error& e) {
+    CHECK(e.scene_key() == std::optional<std::string>("maxima.twist"));
+    CHECK_THAT(e.what(), Catch::StartsWith("twist maximum"));
+  }
 }

@@ -32,8 +32,8 @@ double scaled_difference(const Trajectory& reference, const Trajectory& other) {
 
 Trajectory run_example(const std::string& name, SolverKind solver, double tolerance = 1e-10) {
   const Scene scene = testing::example_scene(name);
-  const GearModel model(GearParameters::from_scene(scene));
-  return simulate(model, initial_state(scene), RunSpec::from_scene(scene), solver, tolerance);
+  const GearModel model(gear_parameters(scene));
+  return simulate(model, initial_state(scene), run_spec(scene), solver, tolerance);
 }
 
 }  // namespace
@@ -124,8 +124,8 @@ long peak_resident_kb() {
 
 TEST_CASE("an output grid over the row limit is refused before anything is allocated", "[solver]") {
   const Scene scene = parse_scene(testing::gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1\n"), "rows.ini");
-  const GearModel model(GearParameters::from_scene(scene));
-  RunSpec spec = RunSpec::from_scene(scene);
+  const GearModel model(gear_parameters(scene));
+  RunSpec spec = run_spec(scene);
   spec.output_step = scene.duration / (2 * RunSpec::max_rows);  // twice the limit: 2e7 rows
   const long before = peak_resident_kb();
   CHECK_THROWS_WITH(simulate(model, initial_state(scene), spec), Catch::Contains("raise run.output_step"));
@@ -137,4 +137,26 @@ TEST_CASE("an output grid over the row limit is refused before anything is alloc
   CHECK(simulate(model, initial_state(scene), spec).samples.size() == 11);
   spec.output_step = INFINITY;
   CHECK_THROWS_WITH(simulate(model, initial_state(scene), spec), Catch::Contains("must be a finite number > 0"));
+}
+
+TEST_CASE("one run feeds several output grids exactly as separate runs would", "[solver]") {
+  for (const std::string name : {"bild5b", "bild6c", "driven"}) {
+    INFO(name);
+    const Scene scene = testing::example_scene(name);
+    const GearModel model(gear_parameters(scene));
+    RunSpec fine = run_spec(scene), coarse = run_spec(scene);
+    fine.output_step = scene.duration / 20000;
+    coarse.output_step = scene.duration / 1999;  // not a multiple of the fine step
+    Trajectory together_fine, together_coarse;
+    TrajectoryRecorder fine_recorder(model, together_fine), coarse_recorder(model, together_coarse);
+    auto stepper = make_exact_stepper();
+    integrate(model, *stepper, initial_state(scene), fine, fine_recorder, {{coarse.output_step, coarse_recorder}});
+    for (const auto& [together, spec] : {std::pair{&together_fine, fine}, std::pair{&together_coarse, coarse}}) {
+      const Trajectory alone = simulate(model, initial_state(scene), spec);
+      REQUIRE(together->samples.size() == alone.samples.size());
+      CHECK(together->samples_csv() == alone.samples_csv());
+      CHECK(together->events_csv() == alone.events_csv());
+    }
+    CHECK(together_coarse.samples.size() == 2000);
+  }
 }

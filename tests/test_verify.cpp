@@ -5,11 +5,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <regex>
 
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
-#include "cli/command.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
@@ -33,7 +33,7 @@ std::string generated_deck(const Scene& scene, circuit::Level level) {
   PatchOptions o;
   o.check_peaks = false;
   o.comparator_offset = circuit::comparator_offset(level);
-  return circuit::render_netlist(circuit::build_circuit(scene, make_patch(scene, o), level), level, scene.machine);
+  return circuit::render_netlist(circuit::build_circuit(make_patch(scene, o), level));
 }
 
 /// Machine voltages a perfect circuit would give: the reference, scaled.
@@ -110,6 +110,28 @@ TEST_CASE("verify fails when one potentiometer is off by 20 %", "[verify][ngspic
                                           output);
   CHECK(status == 1);
   CHECK_THAT(output, Catch::Contains("FAIL") && Catch::Contains("% of full scale at t ="));
+}
+
+TEST_CASE("verify names the scene file and line of a scaling refusal, before any simulator run", "[verify]") {
+  const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
+  spice::ScriptedSimulator never;
+  CHECK_THROWS_WITH(verify::verify(load_scene(wide), {}, never), Catch::StartsWith(wide + ":13: alpha11 = "));
+  CHECK(never.decks().empty());
+}
+
+TEST_CASE("verify keeps the patch's warnings and reports them", "[verify]") {
+  const Scene scene = load_scene(testing::source_path("scenes/extremes/efficiency-one-locked.ini"));
+  spice::ScriptedSimulator dead;
+  spice::Vectors flat;
+  flat.data["time"] = {0, scene.duration * 10};
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
+  dead.then_return(flat);
+  const verify::VerifyResult r = verify::verify(scene, {}, dead);
+  REQUIRE(r.warnings.size() == 2);
+  CHECK_THAT(r.warnings[0], Catch::Contains("alpha2 = 0.02 at β = 10 is below 0.1"));
+  CHECK_THAT(verify::to_table(r), Catch::Contains("warning (settings): " + r.warnings[1]));
+  const auto j = nlohmann::json::parse(verify::to_json(r));
+  CHECK(j["warnings"] == nlohmann::json(r.warnings));
 }
 
 TEST_CASE("the scripted simulator stands in for ngspice", "[verify]") {
@@ -276,12 +298,12 @@ TEST_CASE("a trace cut short or without points is a simulator failure, not a ver
   for (auto& [name, values] : none.data) values.clear();
   CHECK_THAT(simulator_failure(scene, none), Catch::Contains("cut short: no complete point"));
   // The interpolation itself refuses an empty trace (it used to read front() of it).
-  const GearModel model(GearParameters::from_scene(scene));
-  const Trajectory reference = simulate(model, initial_state(scene), RunSpec::from_scene(scene));
+  const GearModel model(gear_parameters(scene));
+  const Trajectory reference = simulate(model, initial_state(scene), run_spec(scene));
   verify::CircuitTrace empty;
-  for (const char* name : {"omega_p", "omega_s", "dphi", "m0"}) empty.signals[name] = {};
+  for (Signal signal : all_signals) empty.signals[signal] = {};
   try {
-    verify::compare(reference, empty, model, {{"omega_p", 1.0}}, scene.duration, 0);
+    verify::compare(reference, empty, model, {{Signal::omega_p, 1.0}}, scene.duration, 0);
     FAIL("compared an empty trace");
   } catch (const Error& e) {
     CHECK(e.kind() == Error::Kind::internal);
@@ -326,7 +348,7 @@ TEST_CASE("the verify report as JSON replaces text that is not UTF-8", "[verify]
 }
 
 TEST_CASE("internal errors have their own exit status", "[verify][cli]") {
-  CHECK(cli::exit_status(Error::Kind::input) == 2);
-  CHECK(cli::exit_status(Error::Kind::simulator) == 3);
-  CHECK(cli::exit_status(Error::Kind::internal) == 4);
+  CHECK(exit_status(Error::Kind::input) == 2);
+  CHECK(exit_status(Error::Kind::simulator) == 3);
+  CHECK(exit_status(Error::Kind::internal) == 4);
 }

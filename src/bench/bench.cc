@@ -8,13 +8,13 @@
 #include <sys/resource.h>
 
 #include "bench/pareto.h"
-#include "bench/quality.h"
+#include "circuit/quality.h"
 #include "circuit/circuit.h"
 #include "common/error.h"
 #include "common/numbers.h"
 #include "model/gear_model.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 #include "verify/verify.h"
 
@@ -50,9 +50,9 @@ Point failed_point(Point p, const std::string& why) {
 
 void measure_reference(const Scene& scene, const BenchOptions& o, const std::string& where,
                        std::vector<Point>& points) {
-  const GearModel model(GearParameters::from_scene(scene));
+  const GearModel model(gear_parameters(scene));
   const GearState initial = initial_state(scene);
-  const RunSpec grid = RunSpec::from_scene(scene);
+  const RunSpec grid = run_spec(scene);
   RunSpec coarse = grid;
   coarse.output_step = scene.duration;  // time the solver, not the output grid
   const auto scales = full_scales(scene);
@@ -149,7 +149,7 @@ std::vector<double> standard_tolerances() {
 }
 
 std::vector<Knob> standard_knobs() {
-  const circuit::TransientControl d = quality_preset(default_quality()).control;
+  const circuit::TransientControl d = circuit::quality_preset(circuit::default_quality()).control;
   std::vector<Knob> knobs;
   knobs.push_back({"default", "verify default", circuit::Level::ideal, d, {}});
   for (double points : {500.0, 2000.0, 4000.0, 16000.0})
@@ -176,9 +176,9 @@ std::vector<Knob> standard_knobs() {
       c.output_points = points;
       knobs.push_back({"grid", fmt::format("output grid {}", points), circuit::Level::ideal, c, {}});
     }
-  for (const QualityPreset& preset : quality_presets()) {
+  for (const circuit::QualityPreset& preset : circuit::quality_presets()) {
     auto same = std::find_if(knobs.begin(), knobs.end(), [&](const Knob& k) {
-      return k.level == circuit::Level::ideal && same_control(k.control, preset.control);
+      return k.level == circuit::Level::ideal && circuit::same_control(k.control, preset.control);
     });
     if (same == knobs.end())
       same = knobs.insert(knobs.end(), {"preset", "preset " + preset.name, circuit::Level::ideal,
@@ -201,9 +201,9 @@ std::vector<Knob> select_knobs(const std::vector<Knob>& knobs, const std::vector
 std::array<double, 4> full_scales(const Scene& scene) {
   PatchOptions po;
   po.comparator_offset = circuit::comparator_offset(circuit::Level::ideal);
-  const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, po), circuit::Level::ideal);
-  return {c.probes.at("omega_p").full_scale, c.probes.at("omega_s").full_scale,
-          c.probes.at("dphi").full_scale, c.probes.at("m0").full_scale};
+  const circuit::Circuit c = circuit::build_circuit(make_patch(scene, po), circuit::Level::ideal);
+  return {c.probes.at(Signal::omega_p).full_scale, c.probes.at(Signal::omega_s).full_scale,
+          c.probes.at(Signal::dphi).full_scale, c.probes.at(Signal::m0).full_scale};
 }
 
 double scaled_difference(const Trajectory& reference, const Trajectory& other,
@@ -381,7 +381,7 @@ BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
       r.default_on_median_front = median_front[k];
     }
   }
-  for (const QualityPreset& preset : quality_presets())
+  for (const circuit::QualityPreset& preset : circuit::quality_presets())
     for (std::size_t k = 0; k < o.knobs.size(); ++k) {
       const auto& names = o.knobs[k].presets;
       if (std::find(names.begin(), names.end(), preset.name) != names.end()) {

@@ -6,7 +6,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 
-#include "bench/quality.h"
+#include "circuit/quality.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
@@ -29,7 +29,7 @@ json control_json(const circuit::TransientControl& c) {
 }
 
 std::string knob_settings(const Knob& k) {
-  return std::string(level_name(k.level)) + ", " + describe(k.control);
+  return std::string(level_name(k.level)) + ", " + circuit::describe(k.control);
 }
 
 std::string presets_of(const Knob& k) {

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <limits>
 #include <set>
 
 #include <fmt/format.h>
@@ -79,13 +78,13 @@ std::string num(double value) {
 
 const std::vector<BlockInfo>& infos() {
   static const std::vector<BlockInfo> table = {
-      {"potentiometer", "gp_potentiometer", {"in", "out"}, "setting"},
-      {"dead_zone", "gp_dead_zone", {"in", "out"}, "threshold"},
-      {"limiter", "gp_limiter", {"in", "out"}, "band"},
-      {"abs", "gp_abs", {"in", "out"}, ""},
-      {"halfwave", "gp_halfwave", {"in", "pos", "neg"}, ""},
-      {"comparator", "gp_comparator", {"in", "ctrl"}, "offset"},
-      {"switch", "gp_switch", {"in", "out", "ctrl"}, ""},
+      {BlockKind::potentiometer, "potentiometer", "gp_potentiometer", {"in", "out"}, "setting"},
+      {BlockKind::dead_zone, "dead_zone", "gp_dead_zone", {"in", "out"}, "threshold"},
+      {BlockKind::limiter, "limiter", "gp_limiter", {"in", "out"}, "band"},
+      {BlockKind::abs, "abs", "gp_abs", {"in", "out"}, ""},
+      {BlockKind::halfwave, "halfwave", "gp_halfwave", {"in", "pos", "neg"}, ""},
+      {BlockKind::comparator, "comparator", "gp_comparator", {"in", "ctrl"}, "offset"},
+      {BlockKind::analog_switch, "switch", "gp_switch", {"in", "out", "ctrl"}, ""},
   };
   return table;
 }
@@ -268,22 +267,6 @@ const BlockInfo& block_info(std::string_view block) {
   throw Error(fmt::format("unknown circuit block '{}' (known: {})", block, known));
 }
 
-double input_load(Level level, std::string_view block, const MachineProfile& machine) {
-  const BlockInfo& info = block_info(block);
-  check_machine(level, machine);
-  const double inf = std::numeric_limits<double>::infinity();
-  const double r = machine.input_resistance;
-  if (level == Level::ideal) return inf;  // E and B sources draw nothing
-  using F = HardwareFigures;
-  if (info.name == "potentiometer") return machine.potentiometer_resistance;
-  if (info.name == "dead_zone") return r / 40;
-  if (info.name == "limiter") return r / 10;
-  if (info.name == "abs") return r / 20;
-  if (info.name == "halfwave") return r / 10;
-  if (info.name == "comparator") return F::comparator_r1 + comparator_r2(machine);
-  return inf;  // switch
-}
-
 std::string render_models(Level level, const MachineProfile& machine) {
   data ctx = context(level, machine);
   std::string text = render(level, "models", ctx);
@@ -291,9 +274,20 @@ std::string render_models(Level level, const MachineProfile& machine) {
   return text;
 }
 
+const BlockInfo& block_info(BlockKind block) {
+  for (const auto& info : infos())
+    if (info.kind == block) return info;
+  throw Error("internal: a block kind without a row in the block table");
+}
+
+std::string to_string(BlockKind block) { return block_info(block).name; }
+
+std::string render_block(Level level, BlockKind block, const MachineProfile& machine) {
+  return render(level, block_info(block).name, context(level, machine));
+}
+
 std::string render_block(Level level, std::string_view block, const MachineProfile& machine) {
-  const BlockInfo& info = block_info(block);
-  return render(level, info.name, context(level, machine));
+  return render_block(level, block_info(block).kind, machine);
 }
 
 std::string render_amplifier(Level level, std::string_view kind, const std::string& subckt_name,

@@ -3,7 +3,7 @@
 #include <string_view>
 #include <vector>
 
-#include "scene/machine.h"
+#include "machine/machine_profile.h"
 
 namespace gearpatch::circuit {
 
@@ -24,9 +24,14 @@ struct Input {
   int weight = 1;
 };
 
-/// A fixed-pin block: its subckt name, pins in order and instance parameter.
+/// The fixed-pin blocks of the library. (Integrators and summers have
+/// per-instance input lists: render_amplifier.)
+enum class BlockKind { potentiometer, dead_zone, limiter, abs, halfwave, comparator, analog_switch };
+
+/// A fixed-pin block: its kind, name, subckt name, pins in order and instance parameter.
 struct BlockInfo {
-  std::string name;               ///< "dead_zone"
+  BlockKind kind;
+  std::string name;               ///< "dead_zone" (the analog switch is "switch")
   std::string subckt;             ///< "gp_dead_zone", the same at both levels
   std::vector<std::string> pins;  ///< {"in", "out"}
   std::string param;              ///< "threshold", or empty if the block has none
@@ -38,15 +43,9 @@ struct BlockInfo {
 const std::vector<std::string>& block_names();
 /// Throws Error on an unknown name.
 const BlockInfo& block_info(std::string_view block);
-
-/// The resistance the block's `in` pin presents, to ground or a virtual
-/// ground: the load a hardware potentiometer driving it sees (the composer
-/// needs it for the loaded setting). +infinity where the input draws no
-/// current (every ideal-level block except potentiometer) or passes it on
-/// (switch: whatever its output drives). Hardware: potentiometer Rp, dead_zone
-/// R/40, limiter R/10, abs R/20, halfwave R/10, comparator R1 + R2 (to its
-/// own output). Integrator and summer inputs are R/n at both levels.
-double input_load(Level level, std::string_view block, const MachineProfile& machine);
+const BlockInfo& block_info(BlockKind block);
+/// The block's name, "dead_zone" …: the one table is block_info's.
+std::string to_string(BlockKind block);
 
 /// The input offset voltage of the hardware op-amp model (TL071 class), V:
 /// it makes every hardware integrator drift, which `verify` uses to diagnose.
@@ -59,6 +58,8 @@ std::string render_models(Level level, const MachineProfile& machine);
 /// The `.subckt gp_<block> pins... params: <param>=<default>` definition of a
 /// fixed-pin block; the composer instantiates it as many times as needed,
 /// e.g. `Xdz a b gp_dead_zone params: threshold={a5}`.
+std::string render_block(Level level, BlockKind block, const MachineProfile& machine);
+/// The same by name; throws Error on an unknown one.
 std::string render_block(Level level, std::string_view block, const MachineProfile& machine);
 
 /// One integrator or summer (`kind` "integrator" or "summer") as its own

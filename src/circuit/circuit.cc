@@ -6,7 +6,6 @@
 
 #include "common/error.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
 
 namespace gearpatch::circuit {
 
@@ -15,11 +14,12 @@ namespace {
 /// Builds the circuit block by block; each add_* method is one part of Bild 4.
 class Builder {
  public:
-  Builder(const Scene& scene, const Patch& patch, Level level)
-      : scene_(scene), patch_(patch), level_(level) {
-    c_.scene = scene.name;
+  Builder(const Patch& patch, Level level) : patch_(patch), level_(level) {
+    c_.scene = patch.scene;
+    c_.level = level;
+    c_.machine = patch.machine;
     c_.beta = patch.beta;
-    c_.duration = scene.duration;
+    c_.duration = patch.duration;
   }
 
   Circuit build() {
@@ -36,29 +36,32 @@ class Builder {
   }
 
  private:
-  bool has(const std::string& name) const { return patch_.find(name) != nullptr; }
+  bool has(Setting name) const { return patch_.find(name) != nullptr; }
 
-  AmplifierInput through(const std::string& from, const std::string& pot, std::string ctrl = "") {
+  AmplifierInput through(const std::string& from, Setting pot, std::string ctrl = "") {
     const Potentiometer* p = patch_.find(pot);
-    if (!p) throw Error("internal: the circuit needs " + pot + " but the settings have none");
+    if (!p) throw Error("internal: the circuit needs " + to_string(pot) + " but the settings have none");
     return {from, pot, static_cast<int>(p->weight), std::move(ctrl)};
   }
 
   void amplifier(std::string name, bool integrator, std::string out, std::vector<AmplifierInput> in,
-                 std::string comment, std::string initial = "") {
-    c_.amplifiers.push_back({std::move(name), integrator, std::move(out), std::move(in),
-                             std::move(initial), std::move(comment)});
+                 std::string comment) {
+    c_.amplifiers.push_back({std::move(name), integrator, std::move(out), std::move(in), std::move(comment)});
   }
   void inverter(const std::string& name, const std::string& from, const std::string& out,
                 const std::string& comment) {
-    amplifier(name, false, out, {{from, "", 1, ""}}, comment);
+    amplifier(name, false, out, {{from, std::nullopt, 1, ""}}, comment);
   }
-  void block(std::string name, std::string kind, std::vector<std::string> nodes, std::string param,
+  void block(std::string name, BlockKind kind, std::vector<std::string> nodes, std::string param,
              std::string comment) {
-    c_.blocks.push_back({std::move(name), std::move(kind), std::move(nodes), std::move(param),
+    c_.blocks.push_back({std::move(name), kind, std::move(nodes), std::move(param),
                          std::move(comment)});
   }
   void omit(const std::string& what) { c_.omitted.push_back(what); }
+  /// The initial-value setting of an integrator, if the patch has it (else it starts from 0).
+  std::optional<Setting> initial(Setting name) const {
+    return has(name) ? std::optional<Setting>(name) : std::nullopt;
+  }
 
   void add_parameters() {
     for (const Potentiometer& p : patch_.potentiometers) {
@@ -67,81 +70,76 @@ class Builder {
       c_.dial_settings[p.name] = p.loaded_setting;
       c_.weights[p.name] = static_cast<int>(p.weight);
     }
-    if (patch_.dead_zone) c_.parameters.emplace_back("a", *patch_.dead_zone);
-    if (has("alpha14")) c_.parameters.emplace_back("delta1", patch_.delta1);
-    if (has("alpha_lock")) c_.parameters.emplace_back("delta2", patch_.delta2);
+    if (patch_.dead_zone) c_.parameters.emplace_back(Setting::a, *patch_.dead_zone);
+    if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, patch_.delta1);
+    if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, patch_.delta2);
     // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
     const Maxima& m = patch_.maxima;
-    if (has("alpha6")) c_.parameters.emplace_back("alpha6", scene_.speed_primary / m.speed_primary);
-    if (has("alpha7")) c_.parameters.emplace_back("alpha7", scene_.speed_secondary / m.speed_secondary);
-    if (has("alpha12")) c_.parameters.emplace_back("alpha12", scene_.twist / m.twist);
+    const GearState& s0 = patch_.initial;
+    if (has(Setting::alpha6)) c_.parameters.emplace_back(Setting::alpha6, s0.omega_p / m.speed_primary);
+    if (has(Setting::alpha7)) c_.parameters.emplace_back(Setting::alpha7, s0.omega_s / m.speed_secondary);
+    if (has(Setting::alpha12)) c_.parameters.emplace_back(Setting::alpha12, s0.dphi / m.twist);
   }
-
-  static bool is_initial_value(const std::string& name) {
-    return name == "alpha6" || name == "alpha7" || name == "alpha12";
-  }
-
-  std::string initial(const std::string& param) { return has(param) ? param : ""; }
 
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
     std::vector<AmplifierInput> in;
-    if (has("alpha2")) {
-      c_.sources.emplace_back("drive_n", -scene_.drive_torque / patch_.maxima.drive_torque);
-      in.push_back(through("drive_n", "alpha2"));
+    if (has(Setting::alpha2)) {
+      c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
+      in.push_back(through("drive_n", Setting::alpha2));
     }
-    if (has("alpha1")) in.push_back(through("sign_p", "alpha1"));
-    in.push_back(through("m", "alpha3"));
-    amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm", initial("alpha6"));
-    c_.initial_conditions.emplace_back("wp", has("alpha6") ? "alpha6" : "0");
+    if (has(Setting::alpha1)) in.push_back(through("sign_p", Setting::alpha1));
+    in.push_back(through("m", Setting::alpha3));
+    amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
+    c_.initial_conditions.emplace_back("wp", initial(Setting::alpha6));
   }
 
   void add_secondary() {  // (6.2): φ̇s' = (M0 − M_Rz − M_Rs − M_Re − M_L)/Θs
-    std::vector<AmplifierInput> in{through("m_n", "alpha4")};
-    if (has("alpha5")) in.push_back(through("sign_s", "alpha5"));
-    if (has("alpha_tooth")) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
-      in.push_back(through("m_abs", "alpha_tooth", "ws_pos"));
-      in.push_back(through("m_abs_n", "alpha_tooth", "ws_neg"));
+    std::vector<AmplifierInput> in{through("m_n", Setting::alpha4)};
+    if (has(Setting::alpha5)) in.push_back(through("sign_s", Setting::alpha5));
+    if (has(Setting::alpha_tooth)) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
+      in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
+      in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
     }
-    if (has("alpha_load")) in.push_back(through(scene_.load_torque > 0 ? "ref_p" : "ref_n", "alpha_load"));
-    if (has("alpha_lock")) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
-      in.push_back(through("lock_below", "alpha_lock", "engaged_p"));
-      in.push_back(through("lock_above", "alpha_lock", "engaged_n"));
+    if (has(Setting::alpha_load))
+      in.push_back(through(patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load));
+    if (has(Setting::alpha_lock)) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
+      in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p"));
+      in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n"));
     }
-    if (has("alpha_load")) {
+    if (has(Setting::alpha_load)) {
       c_.sources.emplace_back("ref_p", 1.0);
       c_.sources.emplace_back("ref_n", -1.0);
     }
-    amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm", initial("alpha7"));
-    c_.initial_conditions.emplace_back("ws", has("alpha7") ? "alpha7" : "0");
+    amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
+    c_.initial_conditions.emplace_back("ws", initial(Setting::alpha7));
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
   }
 
   void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)
-    amplifier("sum_dw", false, "dw_n", {through("wp", "alpha8"), through("ws_n", "alpha9")},
+    amplifier("sum_dw", false, "dw_n", {through("wp", Setting::alpha8), through("ws_n", Setting::alpha9)},
               "(6.3) relative speed: dw_n = -dphi'/dphi'_m");
-    amplifier("int_x", true, "x", {through("dw_n", "alpha10")}, "(6.4) twist: x = +dphi/dphi_m",
-              initial("alpha12"));
-    c_.initial_conditions.emplace_back("x", has("alpha12") ? "alpha12" : "0");
+    amplifier("int_x", true, "x", {through("dw_n", Setting::alpha10)}, "(6.4) twist: x = +dphi/dphi_m");
+    c_.initial_conditions.emplace_back("x", initial(Setting::alpha12));
     if (patch_.dead_zone) {
-      block("dz", "dead_zone", {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
+      block("dz", BlockKind::dead_zone, {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
     } else {
       inverter("inv_x", "x", "dz_n", "no backlash: (6.9) is the identity, dz_n = -x");
       omit("block 5 dead zone: no backlash");
     }
-    amplifier("amp_xp", false, "xp", {through("dz_n", "alpha11")},
+    amplifier("amp_xp", false, "xp", {through("dz_n", Setting::alpha11)},
               "(6.9) contact twist: xp = +dphi'/dphi'_m");
   }
 
   void add_transmitted_torque() {  // (6.8), (6.10)
-    std::vector<AmplifierInput> in{through("xp", "alpha13")};
-    if (has("alpha14")) {
+    std::vector<AmplifierInput> in{through("xp", Setting::alpha13)};
+    if (has(Setting::alpha14)) {
       inverter("inv_dw", "dw_n", "dw", "dw = +dphi'/dphi'_m");
       if (patch_.dead_zone) {  // (6.10) corrected: damping only while the flanks touch
         contact_comparators("damp", "{delta1}", "blocks 7/9, (6.10)");
-        in.push_back(through("dw", "alpha14", "damp_p"));
-        in.push_back(through("dw", "alpha14", "damp_n"));
+        in.push_back(through("dw", Setting::alpha14, "damp_p"));
+        in.push_back(through("dw", Setting::alpha14, "damp_n"));
       } else {
-        in.push_back(through("dw", "alpha14"));
+        in.push_back(through("dw", Setting::alpha14));
         omit("blocks 7/9 damping switch: no backlash, the flanks never part");
       }
     } else {
@@ -158,58 +156,59 @@ class Builder {
       inverter("inv_xp", "xp", "xp_n", "xp_n = -xp");
       has_xp_inverted_ = true;
     }
-    block("cmp_" + name + "_p", "comparator", {"xp", name + "_p"}, offset, what + ": xp > " + offset);
-    block("cmp_" + name + "_n", "comparator", {"xp_n", name + "_n"}, offset, what + ": xp < -" + offset);
+    block("cmp_" + name + "_p", BlockKind::comparator, {"xp", name + "_p"}, offset,
+          what + ": xp > " + offset);
+    block("cmp_" + name + "_n", BlockKind::comparator, {"xp_n", name + "_n"}, offset,
+          what + ": xp < -" + offset);
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
     const std::string band = format_band(friction_band(level_));
-    if (has("alpha1")) {
+    if (has(Setting::alpha1)) {
       inverter("inv_wp", "wp", "wp_n", "wp_n = -wp");
-      block("sign_p", "limiter", {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
+      block("sign_p", BlockKind::limiter, {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
     } else {
       omit("block 2 primary bearing friction: k_Rp = 0");
     }
-    if (has("alpha5"))
-      block("sign_s", "limiter", {"ws_n", "sign_s"}, band, "block 14, (6.6): sign_s = +sign(ws)");
+    if (has(Setting::alpha5))
+      block("sign_s", BlockKind::limiter, {"ws_n", "sign_s"}, band, "block 14, (6.6): sign_s = +sign(ws)");
     else
       omit("block 14 secondary bearing friction: k_Rs = 0");
   }
 
   void add_tooth_friction() {  // (5.5): M_Rz = k_z·|M0|·sign φ̇s
-    if (!has("alpha_tooth")) {
+    if (!has(Setting::alpha_tooth)) {
       omit("block 8 |M0| and the tooth friction switch: eta_z = 1");
       return;
     }
-    block("abs_m", "abs", {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
+    block("abs_m", BlockKind::abs, {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
     inverter("inv_abs_m", "m_abs_n", "m_abs", "m_abs = |m|");
-    block("cmp_tooth_p", "comparator", {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
-    block("cmp_tooth_n", "comparator", {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
+    block("cmp_tooth_p", BlockKind::comparator, {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
+    block("cmp_tooth_n", BlockKind::comparator, {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
   }
 
   void add_self_locking() {  // (6.7): M_Re = k_Re·φ̇s when φ̇s·Δφ' < 0, k_Re → ∞
-    if (!has("alpha_lock")) {
+    if (!has(Setting::alpha_lock)) {
       omit("blocks 16/17 self-locking: not self-locking");
       return;
     }
-    block("lock_char", "limiter", {"ws", "lock_steep_n"}, format_band(lock_band(level_)),
+    block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(lock_band(level_)),
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
-    block("lock_half", "halfwave", {"lock_steep_n", "lock_below", "lock_above"}, "",
+    block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"}, "",
           "lock_below = min(clip, 0), lock_above = max(clip, 0)");
     contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
   }
 
   void add_probes() {
     const Maxima& m = patch_.maxima;
-    c_.probes["omega_p"] = {"wp", 1, m.speed_primary};
-    c_.probes["omega_s"] = {"ws", 1, m.speed_secondary};
-    c_.probes["dphi"] = {"x", 1, m.twist};
-    c_.probes["m0"] = {"m", 1, m.torque};
+    c_.probes[Signal::omega_p] = {"wp", m.speed_primary};
+    c_.probes[Signal::omega_s] = {"ws", m.speed_secondary};
+    c_.probes[Signal::dphi] = {"x", m.twist};
+    c_.probes[Signal::m0] = {"m", m.torque};
   }
 
   static std::string format_band(double band) { return fmt::format("{}", band); }
 
-  const Scene& scene_;
   const Patch& patch_;
   Level level_;
   bool has_xp_inverted_ = false;
@@ -224,12 +223,12 @@ std::vector<std::string> Circuit::amplifier_outputs() const {
   for (const auto& b : blocks)
     // Comparators, limiters and the half-wave of the limited lock reaction sit
     // at ±1 MU (or the rails) by design: that is their function, not an overload.
-    if (b.block == "dead_zone" || b.block == "abs")
+    if (b.block == BlockKind::dead_zone || b.block == BlockKind::abs)
       for (std::size_t i = 1; i < b.nodes.size(); ++i) nodes.push_back(b.nodes[i]);
   return nodes;
 }
 
-bool Circuit::uses(const std::string& kind) const {
+bool Circuit::uses(BlockKind kind) const {
   return std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) { return b.block == kind; });
 }
 
@@ -238,8 +237,8 @@ double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
 double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
 
-Circuit build_circuit(const Scene& scene, const Patch& patch, Level level) {
-  return Builder(scene, patch, level).build();
+Circuit build_circuit(const Patch& patch, Level level) {
+  return Builder(patch, level).build();
 }
 
 }  // namespace gearpatch::circuit

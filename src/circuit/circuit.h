@@ -5,21 +5,23 @@
 #include <vector>
 
 #include "circuit/block_library.h"
+#include "machine/machine_profile.h"
+#include "scaling/setting.h"
+#include "solver/signal.h"
 
 namespace gearpatch {
 struct Patch;
-struct Scene;
 }  // namespace gearpatch
 
 namespace gearpatch::circuit {
 
 /// One input of an integrator or summer: the node it takes, through which
-/// coefficient potentiometer (a Patch name such as "alpha3", or empty for a
-/// direct weight-1 input), at which weight, and — for the comparator-switched
-/// paths of blocks 7/9 — the control node of the switch behind the potentiometer.
+/// coefficient potentiometer (none for a direct weight-1 input), at which
+/// weight, and — for the comparator-switched paths of blocks 7/9 — the
+/// control node of the switch behind the potentiometer.
 struct AmplifierInput {
   std::string from;
-  std::string potentiometer;
+  std::optional<Setting> potentiometer;
   int weight = 1;
   std::string switched_by;
 };
@@ -30,25 +32,23 @@ struct Amplifier {
   bool integrator = false;
   std::string out;    ///< output node
   std::vector<AmplifierInput> inputs;
-  std::string initial_value;  ///< .param name of the initial condition (integrators)
-  std::string comment;        ///< what it computes, with the paper's equation
+  std::string comment;  ///< what it computes, with the paper's equation
 };
 
 /// A fixed-pin block from the library (dead_zone, limiter, abs, halfwave,
 /// comparator, switch, potentiometer) wired to deck nodes.
 struct FunctionBlock {
   std::string name;
-  std::string block;
+  BlockKind block{};
   std::vector<std::string> nodes;  ///< in the block's pin order
   std::string parameter;           ///< value expression for its one parameter, or empty
   std::string comment;
 };
 
-/// How a machine variable of the comparison is read off the deck: the node,
-/// its sign (inverted nodes read −1) and the physical value of 1 MU.
+/// How a machine variable of the comparison is read off the deck: the node
+/// (each probe reads a non-inverted one) and the physical value of 1 MU.
 struct Probe {
   std::string node;
-  double sign = 1;
   double full_scale = 1;
 };
 
@@ -57,25 +57,27 @@ struct Probe {
 /// data, rendered to a deck by render_netlist.
 struct Circuit {
   std::string scene;
+  Level level = Level::ideal;  ///< how faithfully the blocks model the machine
+  MachineProfile machine;      ///< the machine it is patched on
   std::vector<Amplifier> amplifiers;
   std::vector<FunctionBlock> blocks;
   std::vector<std::pair<std::string, double>> sources;  ///< node → machine units (DC)
-  std::vector<std::pair<std::string, double>> parameters;  ///< .param name → value (ideal)
-  std::map<std::string, double> dial_settings;  ///< potentiometer → dial position (hardware)
-  std::map<std::string, int> weights;           ///< potentiometer → input weight
-  /// node → .param name of its initial value, or "0": a machine sets every
-  /// integrator in IC mode, and an unset one would start wherever the
+  std::vector<std::pair<Setting, double>> parameters;  ///< one .param each → value (ideal)
+  std::map<Setting, double> dial_settings;  ///< potentiometer → dial position (hardware)
+  std::map<Setting, int> weights;           ///< potentiometer → input weight
+  /// node → the setting of its initial value, or none for 0: a machine sets
+  /// every integrator in IC mode, and an unset one would start wherever the
   /// operating point leaves it (op-amp offsets charge the capacitor).
-  std::vector<std::pair<std::string, std::string>> initial_conditions;
+  std::vector<std::pair<std::string, std::optional<Setting>>> initial_conditions;
   std::vector<std::string> omitted;             ///< blocks left out, with the reason
-  std::map<std::string, Probe> probes;          ///< omega_p, omega_s, dphi, m0
+  std::map<Signal, Probe> probes;              ///< one per compared signal
   double beta = 1;                              ///< machine time = β · real time
   double duration = 1;                          ///< real time, s
 
   /// Every node an op-amp drives in its linear range (the overload check);
   /// comparators, limiters and the lock's half-wave saturate by design.
   std::vector<std::string> amplifier_outputs() const;
-  bool uses(const std::string& block) const;
+  bool uses(BlockKind block) const;
 };
 
 /// The comparator offsets δ1, δ2 for a level, in machine units. The paper sets
@@ -97,8 +99,8 @@ double comparator_offset(Level level);
 double friction_band(Level level);
 double lock_band(Level level);
 
-/// The circuit that solves (6.1)–(6.10) with the scene's settings at the
-/// given level, holding only the blocks the scene needs.
-Circuit build_circuit(const Scene& scene, const Patch& patch, Level level);
+/// The circuit that solves (6.1)–(6.10) with the patch's settings at the
+/// given level on the patch's machine, holding only the blocks the scene needs.
+Circuit build_circuit(const Patch& patch, Level level);
 
 }  // namespace gearpatch::circuit

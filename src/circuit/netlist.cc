@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
+#include <map>
 #include <set>
 
 #include "common/error.h"
@@ -31,9 +32,9 @@ std::string parameters(const Circuit& c, Level level) {
     const double shown = level == Level::hardware && dial != c.dial_settings.end() ? dial->second : value;
     // A belt behind the scene's ranges: ngspice would read "nan" as 0 or fail late.
     if (!std::isfinite(shown))
-      throw Error(fmt::format("the deck would set .param {}={}", name, shown), Error::Kind::internal);
+      throw Error(fmt::format("the deck would set .param {}={}", to_string(name), shown), Error::Kind::internal);
     auto weight = c.weights.find(name);
-    text += fmt::format(".param {}={}", name, format_number(shown));
+    text += fmt::format(".param {}={}", to_string(name), format_number(shown));
     if (weight != c.weights.end()) text += fmt::format("  $ into a weight-{} input", weight->second);
     text += "\n";
   }
@@ -42,14 +43,15 @@ std::string parameters(const Circuit& c, Level level) {
 
 std::string library(const Circuit& c, Level level, const MachineProfile& m) {
   std::string text = "\n" + render_models(level, m);
-  std::set<std::string> kinds;
-  for (const auto& b : c.blocks) kinds.insert(b.block);
+  std::map<std::string, BlockKind> kinds;  // by name: the deck lists them alphabetically
+  auto add = [&](BlockKind kind) { kinds.emplace(to_string(kind), kind); };
+  for (const auto& b : c.blocks) add(b.block);
   for (const auto& a : c.amplifiers)
     for (const auto& in : a.inputs) {
-      if (!in.potentiometer.empty()) kinds.insert("potentiometer");
-      if (!in.switched_by.empty()) kinds.insert("switch");
+      if (in.potentiometer) add(BlockKind::potentiometer);
+      if (!in.switched_by.empty()) add(BlockKind::analog_switch);
     }
-  for (const auto& kind : kinds) text += "\n" + render_block(level, kind, m);
+  for (const auto& [name, kind] : kinds) text += "\n" + render_block(level, kind, m);
   for (const auto& a : c.amplifiers) {
     std::vector<Input> pins;
     for (std::size_t k = 0; k < a.inputs.size(); ++k)
@@ -66,10 +68,10 @@ std::string amplifier_instances(const Amplifier& a) {
   for (std::size_t k = 0; k < a.inputs.size(); ++k) {
     const AmplifierInput& in = a.inputs[k];
     std::string node = in.from;
-    if (!in.potentiometer.empty()) {
+    if (in.potentiometer) {
       const std::string wiper = fmt::format("{}_{}", a.name, k + 1);
       text += fmt::format("Xpot_{} {} {} gp_potentiometer params: setting={{{}}}\n", wiper, node, wiper,
-                          in.potentiometer);
+                          to_string(*in.potentiometer));
       node = wiper;
     }
     if (!in.switched_by.empty()) {
@@ -93,7 +95,7 @@ std::string program(const Circuit& c, const MachineProfile& m) {
   for (const auto& b : c.blocks) {
     text += fmt::format("* {}\nX{}", b.comment, b.name);
     for (const auto& node : b.nodes) text += " " + node;
-    text += " gp_" + b.block;
+    text += " gp_" + to_string(b.block);
     const auto& info = block_info(b.block);
     if (!info.param.empty() && !b.parameter.empty())
       text += fmt::format(" params: {}={}", info.param, b.parameter);
@@ -109,7 +111,8 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
                 Error::Kind::internal);
   std::string text = "\n* Initial conditions (integrators in IC mode), machine units x unit volts\n";
   for (const auto& [node, param] : c.initial_conditions)
-    text += fmt::format(".ic v({})={{{}*{}}}\n", node, param, format_number(m.unit_volts));
+    text += fmt::format(".ic v({})={{{}*{}}}\n", node, param ? to_string(*param) : "0",
+                        format_number(m.unit_volts));
   text += fmt::format(
       "\n* Transient in machine time: {} s of real time x beta {}\n"
       ".options method={} reltol={} abstol=1e-12 vntol=1e-9 chgtol=1e-16 itl4=100\n"
@@ -121,8 +124,9 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
 
 }  // namespace
 
-std::string render_netlist(const Circuit& c, Level level, const MachineProfile& m,
-                           const TransientControl& control) {
+std::string render_netlist(const Circuit& c, const TransientControl& control) {
+  const Level level = c.level;
+  const MachineProfile& m = c.machine;
   return header(c, level, m) + parameters(c, level) + library(c, level, m) + program(c, m) +
          analysis(c, m, control);
 }

@@ -1,9 +1,7 @@
 #pragma once
 #include <string>
 
-#include "circuit/block_library.h"
 #include "circuit/circuit.h"
-#include "scene/machine.h"
 
 namespace gearpatch::circuit {
 
@@ -18,11 +16,11 @@ struct TransientControl {
   std::string method = "trap";   ///< trap or gear
 };
 
-/// Renders the circuit as an ngspice deck at the given level: the settings as
-/// one `.param` each, the block subcircuits from templates/, the instances
-/// with the paper's block numbers in comments, `.ic` for the integrators and
-/// the `.tran` analysis in machine time. Numbers are locale-independent.
-std::string render_netlist(const Circuit& circuit, Level level, const MachineProfile& machine,
-                           const TransientControl& control = {});
+/// Renders the circuit as an ngspice deck at its level for its machine: the
+/// settings as one `.param` each, the block subcircuits from templates/, the
+/// instances with the paper's block numbers in comments, `.ic` for the
+/// integrators and the `.tran` analysis in machine time. Numbers are
+/// locale-independent.
+std::string render_netlist(const Circuit& circuit, const TransientControl& control = {});
 
 }  // namespace gearpatch::circuit

@@ -5,7 +5,7 @@
 
 #include "bench/bench.h"
 #include "bench/bench_report.h"
-#include "bench/quality.h"
+#include "circuit/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
 #include "common/error.h"
@@ -42,10 +42,10 @@ std::vector<std::string> example_scene_files() {
 
 /// The quality presets with their measured numbers, one line each.
 std::string presets_text() {
-  std::string text = "The quality presets of verify --quality (" + bench::preset_source() + "):\n";
-  for (const auto& p : bench::quality_presets())
+  std::string text = "The quality presets of verify --quality (" + circuit::preset_source() + "):\n";
+  for (const auto& p : circuit::quality_presets())
     text += fmt::format("  {:<8} {:<40} worst {:.2g} %, median {:.2g} % of full scale, {:.2g} s\n", p.name,
-                        bench::describe(p.control), 100 * p.measured_worst_error, 100 * p.measured_median_error,
+                        circuit::describe(p.control), 100 * p.measured_worst_error, 100 * p.measured_median_error,
                         p.measured_total_seconds);
   return text;
 }

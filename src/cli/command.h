@@ -19,10 +19,6 @@ struct Command {
 /// The static table of subcommands, in the order `--help` lists them.
 const std::vector<Command>& commands();
 
-/// The exit status of a command that ended in an Error of this kind: 2 bad
-/// input, 3 simulator, 4 internal (also for any other exception).
-int exit_status(Error::Kind kind);
-
 int run_simulate(const std::vector<std::string>& args);
 int run_settings(const std::vector<std::string>& args);
 int run_netlist(const std::vector<std::string>& args);

@@ -14,13 +14,4 @@ const std::vector<Command>& commands() {
   return table;
 }
 
-int exit_status(Error::Kind kind) {
-  switch (kind) {
-    case Error::Kind::input: return 2;
-    case Error::Kind::simulator: return 3;
-    case Error::Kind::internal: return 4;
-  }
-  return 4;
-}
-
 }  // namespace gearpatch::cli

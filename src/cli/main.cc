@@ -55,10 +55,10 @@ int main(int argc, char** argv) {
     } catch (const gearpatch::Error& e) {
       const bool internal = e.kind() == gearpatch::Error::Kind::internal;
       std::fprintf(stderr, "gearpatch %s: %s%s\n", command.name, internal ? "internal error: " : "", e.what());
-      return gearpatch::cli::exit_status(e.kind());
+      return gearpatch::exit_status(e.kind());
     } catch (const std::exception& e) {
       std::fprintf(stderr, "gearpatch %s: internal error: %s\n", command.name, e.what());
-      return gearpatch::cli::exit_status(gearpatch::Error::Kind::internal);
+      return gearpatch::exit_status(gearpatch::Error::Kind::internal);
     }
   }
   std::fprintf(stderr, "gearpatch: unknown command '%s' (see gearpatch --help)\n", args[0].c_str());

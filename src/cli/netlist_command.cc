@@ -8,7 +8,7 @@
 #include "common/output_set.h"
 #include "common/error.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
 
@@ -38,9 +38,9 @@ int run_netlist(const std::vector<std::string>& args) {
   patch_options.autoscale = vm.count("autoscale") > 0;
   patch_options.check_peaks = patch_options.autoscale;
   patch_options.comparator_offset = circuit::comparator_offset(level);
-  const circuit::Circuit c = circuit::build_circuit(scene, make_patch(scene, patch_options), level);
+  const circuit::Circuit c = circuit::build_circuit(make_patch(scene, patch_options), level);
   const circuit::TransientControl control = chosen_quality(vm);
-  const std::string deck = circuit::render_netlist(c, level, scene.machine, control);
+  const std::string deck = circuit::render_netlist(c, control);
   outputs.stage("--output", deck);
   outputs.commit();
   if (!vm.count("output") || vm["output"].as<std::string>() == "-") return 0;

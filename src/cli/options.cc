@@ -5,7 +5,7 @@
 #include <iostream>
 #include <limits>
 
-#include "bench/quality.h"
+#include "circuit/quality.h"
 #include "common/error.h"
 
 namespace gearpatch::cli {
@@ -51,12 +51,12 @@ double number_option(const po::variables_map& vm, const std::string& name, doubl
 }
 
 void add_quality_option(po::options_description& options, const std::string& note) {
-  options.add_options()("quality", po::value<std::string>()->default_value(std::string(bench::default_quality())),
-                        (bench::quality_help() + note).c_str());
+  options.add_options()("quality", po::value<std::string>()->default_value(std::string(circuit::default_quality())),
+                        (circuit::quality_help() + note).c_str());
 }
 
 circuit::TransientControl chosen_quality(const po::variables_map& vm) {
-  return bench::quality_preset(vm["quality"].as<std::string>()).control;
+  return circuit::quality_preset(vm["quality"].as<std::string>()).control;
 }
 
 }  // namespace gearpatch::cli

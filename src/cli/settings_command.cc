@@ -5,7 +5,7 @@
 #include "common/error.h"
 #include "common/output_set.h"
 #include "scaling/patch.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
 

@@ -7,7 +7,7 @@
 #include "common/error.h"
 #include "common/output_set.h"
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 
 namespace gearpatch::cli {
@@ -32,13 +32,14 @@ int run_simulate(const std::vector<std::string>& args) {
   outputs.add("--out", vm.count("out") ? vm["out"].as<std::string>() : "-");
   if (vm.count("events")) outputs.add("--events", vm["events"].as<std::string>());
   const Scene scene = load_scene(file);
-  RunSpec spec = RunSpec::from_scene(scene);
+  RunSpec spec = run_spec(scene);
   if (vm.count("dt")) spec.output_step = number_option(vm, "dt", 0, std::numeric_limits<double>::max(), true);
   // Below about 1e-14 the adaptive solver's error is rounding, not its tolerance.
   const double rtol = number_option(vm, "rtol", 1e-14, 0.1);
-  const GearModel model(GearParameters::from_scene(scene));
+  const SolverKind solver = parse_solver(vm["solver"].as<std::string>());
+  const GearModel model(gear_parameters(scene));
   const Trajectory trajectory =
-      simulate(model, initial_state(scene), spec, parse_solver(vm["solver"].as<std::string>()), rtol);
+      with_scene(scene, [&] { return simulate(model, initial_state(scene), spec, solver, rtol); });
   outputs.stage("--out", trajectory.samples_csv());
   if (outputs.has("--events")) outputs.stage("--events", trajectory.events_csv());
   outputs.commit();

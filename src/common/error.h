@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -18,8 +19,31 @@ class Error : public std::runtime_error {
       : std::runtime_error(message), kind_(kind) {}
   Kind kind() const { return kind_; }
 
+  /// An input error about one scene key ("gear.backlash"), or about the scene
+  /// as a whole (key ""), raised by a layer that knows no files: the layer
+  /// that holds the scene puts its file and line in front (scene_inputs.h).
+  static Error about_scene(std::string key, const std::string& message) {
+    Error e(message);
+    e.scene_key_ = std::move(key);
+    return e;
+  }
+  /// The scene key the error is about, if it is about the scene.
+  const std::optional<std::string>& scene_key() const { return scene_key_; }
+
  private:
   Kind kind_;
+  std::optional<std::string> scene_key_;
 };
+
+/// The exit status of a command that ended in an Error of this kind: 2 bad
+/// input, 3 simulator, 4 internal (also for any other exception).
+constexpr int exit_status(Error::Kind kind) {
+  switch (kind) {
+    case Error::Kind::input: return 2;
+    case Error::Kind::simulator: return 3;
+    case Error::Kind::internal: return 4;
+  }
+  return 4;
+}
 
 }  // namespace gearpatch

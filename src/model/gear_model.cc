@@ -2,27 +2,7 @@
 
 #include <cmath>
 
-#include "model/restitution.h"
-#include "scene/scene.h"
-
 namespace gearpatch {
-
-GearParameters GearParameters::from_scene(const Scene& s) {
-  GearParameters p;
-  p.inertia_primary = s.inertia_primary;
-  p.inertia_secondary = s.inertia_secondary;
-  p.stiffness = s.stiffness;
-  p.half_backlash = s.backlash / 2;
-  p.damping = s.damping ? *s.damping
-                        : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
-  p.bearing_primary = s.bearing_primary;
-  p.bearing_secondary = s.bearing_secondary;
-  p.tooth_friction = 1.0 - s.mesh_efficiency;
-  p.self_locking = s.self_locking;
-  p.drive_torque = s.drive_torque;
-  p.load_torque = s.load_torque;
-  return p;
-}
 
 double GearParameters::effective_inertia() const {
   return inertia_primary * inertia_secondary / (inertia_primary + inertia_secondary);

@@ -7,8 +7,6 @@
 
 namespace gearpatch {
 
-struct Scene;
-
 /// The physical constants of the equivalent gear (paper sections 3–5), SI.
 struct GearParameters {
   double inertia_primary = 1;    ///< Θp
@@ -23,7 +21,6 @@ struct GearParameters {
   double drive_torque = 0;       ///< M_a
   double load_torque = 0;        ///< on the secondary, opposing positive rotation
 
-  static GearParameters from_scene(const Scene&);
   double effective_inertia() const;  ///< Θ = ΘpΘs/(Θp+Θs)
   bool primary_has_friction() const { return bearing_primary > 0; }
   bool secondary_has_friction() const {

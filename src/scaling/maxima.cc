@@ -3,34 +3,69 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <utility>
 
 #include "common/error.h"
 #include "model/gear_model.h"
-#include "scene/scene.h"
+#include "scaling/scaling_input.h"
 
 namespace gearpatch {
 
-std::vector<std::pair<std::string, double>> Maxima::entries() const {
-  std::vector<std::pair<std::string, double>> e;
-  if (drive_torque > 0) e.emplace_back("drive_torque", drive_torque);
-  e.emplace_back("speed_primary", speed_primary);
-  e.emplace_back("speed_secondary", speed_secondary);
-  e.emplace_back("relative_speed", relative_speed);
-  e.emplace_back("contact_twist", contact_twist);
-  e.emplace_back("twist", twist);
-  e.emplace_back("torque", torque);
+namespace {
+
+/// The one table of the maxima: identity, key and the symbol with its unit.
+struct MaximumName {
+  Maximum key;
+  const char* name;
+  const char* symbol;
+};
+constexpr MaximumName maximum_table[] = {
+    {Maximum::drive_torque, "drive_torque", "M_am  N·m"},
+    {Maximum::speed_primary, "speed_primary", "φ̇pm   rad/s"},
+    {Maximum::speed_secondary, "speed_secondary", "φ̇sm   rad/s"},
+    {Maximum::relative_speed, "relative_speed", "Δφ̇m   rad/s"},
+    {Maximum::contact_twist, "contact_twist", "Δφ'm  rad"},
+    {Maximum::twist, "twist", "Δφm   rad"},
+    {Maximum::torque, "torque", "M0m   N·m"},
+};
+
+const MaximumName& row(Maximum key) {
+  for (const auto& r : maximum_table)
+    if (r.key == key) return r;
+  return maximum_table[0];  // not reached: every Maximum has a row
+}
+
+}  // namespace
+
+std::string to_string(Maximum key) { return row(key).name; }
+std::string symbol(Maximum key) { return row(key).symbol; }
+
+std::optional<Maximum> parse_maximum(std::string_view name) {
+  for (const auto& r : maximum_table)
+    if (name == r.name) return r.key;
+  return std::nullopt;
+}
+
+std::vector<std::pair<Maximum, double>> Maxima::entries() const {
+  std::vector<std::pair<Maximum, double>> e;
+  for (const auto& r : maximum_table)
+    if (r.key != Maximum::drive_torque || drive_torque > 0) e.emplace_back(r.key, at(r.key));
   return e;
 }
 
-double& Maxima::at(const std::string& key) {
-  if (key == "drive_torque") return drive_torque;
-  if (key == "speed_primary") return speed_primary;
-  if (key == "speed_secondary") return speed_secondary;
-  if (key == "relative_speed") return relative_speed;
-  if (key == "contact_twist") return contact_twist;
-  if (key == "twist") return twist;
-  if (key == "torque") return torque;
-  throw Error("unknown maximum '" + key + "'");
+double& Maxima::at(Maximum key) { return const_cast<double&>(std::as_const(*this).at(key)); }
+
+const double& Maxima::at(Maximum key) const {
+  switch (key) {
+    case Maximum::drive_torque: return drive_torque;
+    case Maximum::speed_primary: return speed_primary;
+    case Maximum::speed_secondary: return speed_secondary;
+    case Maximum::relative_speed: return relative_speed;
+    case Maximum::contact_twist: return contact_twist;
+    case Maximum::twist: return twist;
+    case Maximum::torque: return torque;
+  }
+  return torque;  // not reached: every Maximum is listed
 }
 
 double round_up_125(double x) {
@@ -64,15 +99,15 @@ double contact_inertia(const GearParameters& p) {
   return 1.0 / (1.0 / p.inertia_primary + (1.0 - p.tooth_friction) / p.inertia_secondary);
 }
 
-RelativeMotion relative_motion(const Scene& s, const GearParameters& p, double drive_max) {
+RelativeMotion relative_motion(const ScalingInput& s, const GearParameters& p, double drive_max) {
   RelativeMotion r;
   // The paper's M_am/Θp; friction and load may push the same way (extension).
   r.accel = (drive_max + p.bearing_primary) / p.inertia_primary +
             (std::abs(p.load_torque) + p.bearing_secondary) / p.inertia_secondary;
   r.inertia = contact_inertia(p);
-  const double rate0 = s.speed_primary - s.speed_secondary;
+  const double rate0 = s.initial.omega_p - s.initial.omega_s;
   GearModel model(p);
-  const double twist0 = model.contact_twist(s.twist);
+  const double twist0 = model.contact_twist(s.initial.dphi);
   // Energy of the relative motion: initial speed, initial spring energy, and
   // the work of the force across the whole play 2ε ((6.11) read as corrected).
   r.entry_speed_sq = rate0 * rate0 + p.stiffness * twist0 * twist0 / r.inertia +
@@ -80,27 +115,27 @@ RelativeMotion relative_motion(const Scene& s, const GearParameters& p, double d
   return r;
 }
 
-double drive_maximum(const Scene& s, Maxima& m) {
-  if (s.maxima.count("drive_torque")) {
-    m.basis["drive_torque"] = "scene override maxima.drive_torque";
-    return s.maxima.at("drive_torque");
+double drive_maximum(const ScalingInput& s, Maxima& m) {
+  if (s.maxima.count(Maximum::drive_torque)) {
+    m.basis[Maximum::drive_torque] = "scene override maxima.drive_torque";
+    return s.maxima.at(Maximum::drive_torque);
   }
   if (s.rated_torque) {
-    m.basis["drive_torque"] = "the drive's rated torque (drive.rated_torque)";
+    m.basis[Maximum::drive_torque] = "the drive's rated torque (drive.rated_torque)";
     return *s.rated_torque;
   }
-  if (s.drive_torque != 0) {
-    m.basis["drive_torque"] = "|M_a|, the constant drive torque";
-    return std::abs(s.drive_torque);
+  if (s.gear.drive_torque != 0) {
+    m.basis[Maximum::drive_torque] = "|M_a|, the constant drive torque";
+    return std::abs(s.gear.drive_torque);
   }
   return 0;
 }
 
 /// Energy of the scene at t = 0: kinetic plus the spring's, if it starts in contact.
-double initial_energy(const Scene& s, const GearParameters& p) {
-  const double twist = GearModel(p).contact_twist(s.twist);
-  return 0.5 * (p.inertia_primary * s.speed_primary * s.speed_primary +
-                p.inertia_secondary * s.speed_secondary * s.speed_secondary +
+double initial_energy(const ScalingInput& s, const GearParameters& p) {
+  const double twist = GearModel(p).contact_twist(s.initial.dphi);
+  return 0.5 * (p.inertia_primary * s.initial.omega_p * s.initial.omega_p +
+                p.inertia_secondary * s.initial.omega_s * s.initial.omega_s +
                 p.stiffness * twist * twist);
 }
 
@@ -113,17 +148,17 @@ bool has_torques(const GearParameters& p, const Maxima& m) {
 /// fixed by momentum without torques, and gains at most the net drive torque
 /// (after the bearing friction it must overcome) over the run. Without
 /// torques nothing adds energy, so ½·Θ·φ̇² <= E0 bounds each shaft as well.
-void estimate_speeds(const Scene& s, const GearParameters& p, const MaximaOptions& o, Maxima& m) {
+void estimate_speeds(const ScalingInput& s, const GearParameters& p, const MaximaOptions& o, Maxima& m) {
   const double total = p.inertia_primary + p.inertia_secondary;
-  const double v0 = std::abs(p.inertia_primary * s.speed_primary +
-                             p.inertia_secondary * s.speed_secondary) / total;
-  const double sign = s.drive_torque < 0 ? -1.0 : 1.0;
+  const double v0 = std::abs(p.inertia_primary * s.initial.omega_p +
+                             p.inertia_secondary * s.initial.omega_s) / total;
+  const double sign = s.gear.drive_torque < 0 ? -1.0 : 1.0;
   const double external = std::abs(sign * m.drive_torque - p.load_torque);
   const bool torques = has_torques(p, m);
   const double gain =
       std::max(0.0, external - p.bearing_primary - p.bearing_secondary) * s.duration / total;
   const double energy = initial_energy(s, p);
-  auto bound = [&](double inertia, double other, double initial, const std::string& key) {
+  auto bound = [&](double inertia, double other, double initial, Maximum key) {
     double w = std::max(std::abs(initial), v0 + gain + other / total * m.relative_speed);
     std::string how = fmt::format("centre-of-mass speed {:.4g}{} + the shaft's share {:.4g}·Δφ̇m",
                                   v0, torques ? fmt::format(" + net drive gain {:.4g} over {:g} s",
@@ -144,29 +179,32 @@ void estimate_speeds(const Scene& s, const GearParameters& p, const MaximaOption
     m.at(key) = w;
     m.basis[key] = how;
   };
-  bound(p.inertia_primary, p.inertia_secondary, s.speed_primary, "speed_primary");
-  bound(p.inertia_secondary, p.inertia_primary, s.speed_secondary, "speed_secondary");
+  bound(p.inertia_primary, p.inertia_secondary, s.initial.omega_p, Maximum::speed_primary);
+  bound(p.inertia_secondary, p.inertia_primary, s.initial.omega_s, Maximum::speed_secondary);
 }
 
-void apply_override(const Scene& s, const std::string& key, Maxima& m) {
+void apply_override(const ScalingInput& s, Maximum key, Maxima& m) {
   auto it = s.maxima.find(key);
   if (it == s.maxima.end()) return;
   m.at(key) = it->second;
-  m.basis[key] = "scene override maxima." + key;
+  m.basis[key] = "scene override maxima." + to_string(key);
 }
 
-void check(const Scene& s, const GearParameters& p, Maxima m) {
+void check(const GearParameters& p, Maxima m) {
   // Root causes first: without a relative speed nothing else has a scale.
-  for (const char* key : {"relative_speed", "contact_twist", "twist", "torque", "speed_primary",
-                          "speed_secondary"})
+  for (Maximum key : {Maximum::relative_speed, Maximum::contact_twist, Maximum::twist,
+                      Maximum::torque, Maximum::speed_primary, Maximum::speed_secondary})
     if (const double value = m.at(key); !(value > 0))
-      throw Error(fmt::format("{}: the maximum {} comes out as {}: nothing in the scene drives it "
-                              "(no initial speed, twist or torque); give maxima.{} in the scene",
-                              s.source, key, value, key));
+      throw Error::about_scene(
+          "maxima." + to_string(key),
+          fmt::format("the maximum {} comes out as {}: nothing in the scene drives it "
+                      "(no initial speed, twist or torque); give maxima.{} in the scene",
+                      to_string(key), value, to_string(key)));
   if (m.twist < p.half_backlash)
-    throw Error(fmt::format("{}: twist maximum Δφm = {} is below the half backlash ε = {}: the "
-                            "dead-zone threshold a = ε/Δφm would exceed 1 MU; raise maxima.twist",
-                            s.where("maxima.twist"), m.twist, p.half_backlash));
+    throw Error::about_scene(
+        "maxima.twist", fmt::format("twist maximum Δφm = {} is below the half backlash ε = {}: the "
+                                    "dead-zone threshold a = ε/Δφm would exceed 1 MU; raise maxima.twist",
+                                    m.twist, p.half_backlash));
 }
 
 }  // namespace
@@ -174,30 +212,30 @@ void check(const Scene& s, const GearParameters& p, Maxima m) {
 namespace {
 
 /// Δφ̇m: (6.11) as corrected, extended by the initial state and the force in contact.
-void estimate_relative_speed(const Scene& s, const GearParameters& p, const RelativeMotion& r,
+void estimate_relative_speed(const ScalingInput& s, const GearParameters& p, const RelativeMotion& r,
                              Maxima& m) {
   m.relative_speed = std::sqrt(r.entry_speed_sq + r.inertia * r.accel * r.accel / p.stiffness);
-  m.basis["relative_speed"] =
+  m.basis[Maximum::relative_speed] =
       "(6.11) as corrected, sqrt(Δφ̇0² + c·Δφ'0²/Θ + 2·a·2ε + Θ·a²/c), a = largest relative "
       "acceleration (M_am + k_Rp)/Θp + (|M_L| + k_Rs)/Θs";
   const double by_energy = std::sqrt(2 * initial_energy(s, p) / p.effective_inertia());
   if (!has_torques(p, m) && by_energy < m.relative_speed) {
     m.relative_speed = by_energy;
-    m.basis["relative_speed"] = "energy, sqrt(2·E0/Θ): nothing in the scene adds energy";
+    m.basis[Maximum::relative_speed] = "energy, sqrt(2·E0/Θ): nothing in the scene adds energy";
   }
-  apply_override(s, "relative_speed", m);
+  apply_override(s, Maximum::relative_speed, m);
 }
 
 /// Δφ'm: (6.12) by energy, with the force that keeps pushing in contact.
-void estimate_contact_twist(const Scene& s, const GearParameters& p, const RelativeMotion& r,
+void estimate_contact_twist(const ScalingInput& s, const GearParameters& p, const RelativeMotion& r,
                             Maxima& m) {
   const double c = p.stiffness;
   const double static_twist = r.inertia * r.accel / c;  // where the force balances the spring
-  const double entry_sq = s.maxima.count("relative_speed")
+  const double entry_sq = s.maxima.count(Maximum::relative_speed)
                               ? m.relative_speed * m.relative_speed
                               : std::min(r.entry_speed_sq, m.relative_speed * m.relative_speed);
   m.contact_twist = static_twist + std::sqrt(static_twist * static_twist + r.inertia * entry_sq / c);
-  m.basis["contact_twist"] = fmt::format(
+  m.basis[Maximum::contact_twist] = fmt::format(
       "(6.12) by energy, x_a + sqrt(x_a² + Θ·v²/c), v the flank speed, x_a = Θ·a/c = {:.4g} rad, "
       "Θ = {:.6g}{}", static_twist, r.inertia,
       p.self_locking ? " (Θp: a self-locked secondary is a wall)"
@@ -205,14 +243,15 @@ void estimate_contact_twist(const Scene& s, const GearParameters& p, const Relat
   const double by_energy = std::sqrt(2 * initial_energy(s, p) / c);
   if (!has_torques(p, m) && by_energy < m.contact_twist) {
     m.contact_twist = by_energy;
-    m.basis["contact_twist"] = "energy, sqrt(2·E0/c): nothing in the scene adds energy";
+    m.basis[Maximum::contact_twist] = "energy, sqrt(2·E0/c): nothing in the scene adds energy";
   }
-  apply_override(s, "contact_twist", m);
+  apply_override(s, Maximum::contact_twist, m);
 }
 
 }  // namespace
 
-Maxima estimate_maxima(const Scene& s, const GearParameters& p, const MaximaOptions& o) {
+Maxima estimate_maxima(const ScalingInput& s, const MaximaOptions& o) {
+  const GearParameters& p = s.gear;
   Maxima m;
   m.drive_torque = drive_maximum(s, m);
   const RelativeMotion r = relative_motion(s, p, m.drive_torque);
@@ -220,24 +259,24 @@ Maxima estimate_maxima(const Scene& s, const GearParameters& p, const MaximaOpti
   estimate_contact_twist(s, p, r, m);
 
   m.twist = p.half_backlash + m.contact_twist;
-  m.basis["twist"] = "ε + Δφ'm";
-  apply_override(s, "twist", m);
+  m.basis[Maximum::twist] = "ε + Δφ'm";
+  apply_override(s, Maximum::twist, m);
 
   const double spring = p.stiffness * m.contact_twist, damper = p.damping * m.relative_speed;
   m.torque = std::max(spring, damper);
-  m.basis["torque"] = spring >= damper ? "c·Δφ'm (the larger of c·Δφ'm and d·Δφ̇'m)"
+  m.basis[Maximum::torque] = spring >= damper ? "c·Δφ'm (the larger of c·Δφ'm and d·Δφ̇'m)"
                                        : "d·Δφ̇'m (the larger of c·Δφ'm and d·Δφ̇'m)";
-  apply_override(s, "torque", m);
+  apply_override(s, Maximum::torque, m);
 
   if (s.rated_speed) {
     m.speed_primary = m.speed_secondary = *s.rated_speed;
-    m.basis["speed_primary"] = m.basis["speed_secondary"] = "the drive's rated speed (drive.rated_speed)";
+    m.basis[Maximum::speed_primary] = m.basis[Maximum::speed_secondary] = "the drive's rated speed (drive.rated_speed)";
   } else {
     estimate_speeds(s, p, o, m);
   }
-  apply_override(s, "speed_primary", m);
-  apply_override(s, "speed_secondary", m);
-  check(s, p, m);
+  apply_override(s, Maximum::speed_primary, m);
+  apply_override(s, Maximum::speed_secondary, m);
+  check(p, m);
   return m;
 }
 

@@ -1,12 +1,24 @@
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace gearpatch {
 
-struct Scene;
 struct GearParameters;
+struct ScalingInput;
+
+/// Which maximum: the scene's [maxima] keys, in the order reports list them.
+enum class Maximum {
+  drive_torque, speed_primary, speed_secondary, relative_speed, contact_twist, twist, torque,
+};
+/// "drive_torque" …: the key in the scene's [maxima], the JSON and the table.
+std::string to_string(Maximum key);
+std::optional<Maximum> parse_maximum(std::string_view name);
+/// "φ̇pm   rad/s": the paper's symbol and the unit, for the table.
+std::string symbol(Maximum key);
 
 /// The maxima of section 6 that amplitude scaling divides by (one machine
 /// unit stands for each), physical units, with a sentence per value saying
@@ -22,11 +34,12 @@ struct Maxima {
   double contact_twist = 0;    ///< Δφ'm
   double twist = 0;            ///< Δφm
   double torque = 0;           ///< M0m
-  std::map<std::string, std::string> basis;  ///< key → how the value was found
+  std::map<Maximum, std::string> basis;  ///< how each value was found
 
   /// key → value, in the order above (drive_torque only when > 0).
-  std::vector<std::pair<std::string, double>> entries() const;
-  double& at(const std::string& key);
+  std::vector<std::pair<Maximum, double>> entries() const;
+  double& at(Maximum key);
+  const double& at(Maximum key) const;
 };
 
 /// How the a-priori estimate is made.
@@ -39,10 +52,9 @@ struct MaximaOptions {
 /// The a-priori maxima of section 6, extended where the paper's examples do
 /// not reach (drive and load torque, friction, tooth friction, initial twist;
 /// each extension vanishes in the paper's case), then the scene's [maxima]
-/// overrides. Throws Error (input) when a maximum comes out zero or an
-/// override contradicts the backlash.
-Maxima estimate_maxima(const Scene& scene, const GearParameters& p,
-                       const MaximaOptions& options = {});
+/// overrides. Throws Error (input, about the maxima key) when a maximum comes
+/// out zero or an override contradicts the backlash.
+Maxima estimate_maxima(const ScalingInput& input, const MaximaOptions& options = {});
 
 /// The smallest of 1, 2, 5 × 10^n that is >= x (x within 1e-9 of one counts as it).
 double round_up_125(double x);

@@ -9,7 +9,7 @@
 #include "scaling/peaks.h"
 #include "scaling/table1.h"
 #include "scaling/time_scale.h"
-#include "scene/scene.h"
+#include "scaling/scaling_input.h"
 
 namespace gearpatch {
 
@@ -22,7 +22,7 @@ double loaded_setting(double alpha, double load_ratio) {
   return 2 * a * l / (b + std::sqrt(b * b + 4 * a * a * l));
 }
 
-const Potentiometer* Patch::find(std::string_view name) const {
+const Potentiometer* Patch::find(Setting name) const {
   for (const auto& p : potentiometers)
     if (p.name == name) return &p;
   return nullptr;
@@ -41,9 +41,10 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
                        needed_beta);
   if (c.kind == CoefficientKind::initial)
     return fmt::format("the initial value exceeds its maximum: raise maxima.{}",
-                       c.name == "alpha6" ? "speed_primary" : c.name == "alpha7" ? "speed_secondary"
-                                                                                 : "twist");
-  if (c.name == "alpha11") {
+                       c.name == Setting::alpha6   ? "speed_primary"
+                       : c.name == Setting::alpha7 ? "speed_secondary"
+                                                   : "twist");
+  if (c.name == Setting::alpha11) {
     // Raising Δφ'm fits the potentiometer but scales the contact torque up with
     // it, which forces a far larger β (backlash-wide: 10000) and fails verify
     // by 70 %, so that is not the first advice.
@@ -57,10 +58,22 @@ std::string advice(const Coefficient& c, const Maxima& m, double needed_beta, do
         m.contact_twist, m.twist, n, (n - 1) * m.contact_twist,
         n > 1 ? fmt::format(" to ε/(n − 1) = {:.4g} rad", half_backlash / (n - 1)) : std::string());
   }
-  if (c.name == "alpha8" || c.name == "alpha9")
+  if (c.name == Setting::alpha8 || c.name == Setting::alpha9)
     return "the speed maximum is large against Δφ̇m: raise maxima.relative_speed or lower "
            "maxima.speed_primary/speed_secondary";
   return "raise maxima.torque, or use a machine with larger input weights";
+}
+
+/// The scene key to change when a coefficient is beyond every weight: the
+/// message names its file and line.
+std::string culprit(const Coefficient& c) {
+  if (c.kind == CoefficientKind::integrator) return "machine.time_scale";
+  if (c.kind == CoefficientKind::initial)
+    return c.name == Setting::alpha6 ? "initial.speed_primary"
+         : c.name == Setting::alpha7 ? "initial.speed_secondary" : "initial.twist";
+  if (c.name == Setting::alpha11) return "gear.backlash";
+  if (c.name == Setting::alpha8 || c.name == Setting::alpha9) return "maxima.relative_speed";
+  return "maxima.torque";
 }
 
 Potentiometer split(const Coefficient& c, double beta, const MachineProfile& machine,
@@ -76,8 +89,8 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
                            [&](int n) { return size <= n * (1 + 1e-12); });
   if (fits == weights.end()) {
     const double needed = beta * size / weights.back();
-    throw Error(fmt::format(
-        "{} = {} = {:.6g}{} is beyond the largest input weight {}{}: {}", c.name, c.formula, table,
+    throw Error::about_scene(culprit(c), fmt::format(
+        "{} = {} = {:.6g}{} is beyond the largest input weight {}{}: {}", to_string(c.name), c.formula, table,
         integrator && machine.integrator_constant != 1
             ? fmt::format(" (÷ k0 → {:.6g})", coefficient) : "",
         weights.back(), integrator ? fmt::format(" at β = {:g}", beta) : "",
@@ -101,34 +114,37 @@ Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std:
   Maxima m = a;
   const double f = 1 + headroom;
   const std::string how = fmt::format("autoscaled: simulated peak × {:g}", f);
-  auto set = [&](const std::string& key, double peak) {
+  auto set = [&](Maximum key, double peak) {
     if (peak > 0) {
       m.at(key) = peak * f;
       m.basis[key] = how;
     } else {
-      notes.push_back(fmt::format("autoscale: {} stays 0 in the run; kept the a-priori maximum", key));
+      notes.push_back(fmt::format("autoscale: {} stays 0 in the run; kept the a-priori maximum",
+                                  to_string(key)));
     }
   };
-  if (a.drive_torque > 0) set("drive_torque", x.drive);
-  set("speed_primary", x.omega_p);
-  set("speed_secondary", x.omega_s);
-  set("relative_speed", x.rate);
+  if (a.drive_torque > 0) set(Maximum::drive_torque, x.drive);
+  set(Maximum::speed_primary, x.omega_p);
+  set(Maximum::speed_secondary, x.omega_s);
+  set(Maximum::relative_speed, x.rate);
   if (x.contact_twist > 0) {
-    set("contact_twist", x.contact_twist);
-    set("twist", x.dphi);
+    set(Maximum::contact_twist, x.contact_twist);
+    set(Maximum::twist, x.dphi);
   } else {
     notes.push_back("autoscale: the flanks never touch in the run; kept the a-priori twist maxima");
   }
-  set("torque", std::max({x.torque, x.spring, x.damping}));
+  set(Maximum::torque, std::max({x.torque, x.spring, x.damping}));
   return m;
 }
 
-const std::map<std::string, std::string>& scale_keys() {
-  static const std::map<std::string, std::string> keys = {
-      {"Wp", "speed_primary"}, {"Ws", "speed_secondary"}, {"DW", "relative_speed"},
-      {"X", "twist"}, {"X'", "contact_twist"}, {"m", "torque"}, {"drive", "drive_torque"},
-      {"dead_zone", "twist"}, {"spring", "torque"}, {"damping", "torque"},
-      {"tooth_friction", "torque"}, {"lock_reaction", "torque"}};
+/// The maximum each peak signal is scaled by.
+const std::map<std::string, Maximum>& scale_keys() {
+  static const std::map<std::string, Maximum> keys = {
+      {"Wp", Maximum::speed_primary}, {"Ws", Maximum::speed_secondary},
+      {"DW", Maximum::relative_speed}, {"X", Maximum::twist}, {"X'", Maximum::contact_twist},
+      {"m", Maximum::torque}, {"drive", Maximum::drive_torque}, {"dead_zone", Maximum::twist},
+      {"spring", Maximum::torque}, {"damping", Maximum::torque},
+      {"tooth_friction", Maximum::torque}, {"lock_reaction", Maximum::torque}};
   return keys;
 }
 
@@ -137,22 +153,23 @@ void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Pat
     if (fraction <= 1 + overload_tolerance) continue;
     auto key = scale_keys().find(signal);
     std::string fix = key == scale_keys().end() ? std::string("use --autoscale")
-        : fmt::format("raise maxima.{} to at least {:.4g} or use --autoscale", key->second,
+        : fmt::format("raise maxima.{} to at least {:.4g} or use --autoscale", to_string(key->second),
                       m.at(key->second) * fraction);
     patch.warnings.push_back(fmt::format("{} would overload: simulated peak {:.4g} MU, {:.1f} % over "
                                          "its scale; {}", signal, fraction, 100 * (fraction - 1), fix));
   }
 }
 
-void check_and_autoscale(const Scene& s, const GearParameters& p, const PatchOptions& o, Patch& patch) {
-  PhysicalPeaks x;
-  try {
-    x = simulate_peaks(s, p);
-  } catch (const Error& e) {
-    if (o.autoscale) throw Error(std::string("autoscale needs the reference model, which failed: ") + e.what());
-    patch.warnings.push_back(std::string("peaks not checked: the reference model failed: ") + e.what());
+void check_and_autoscale(const GearParameters& p, const PatchOptions& o, const PeakRun& run,
+                         Patch& patch) {
+  if (const auto& e = run.failure) {
+    if (o.autoscale)
+      throw Error::about_scene(e->scene_key().value_or(""),
+                               std::string("autoscale needs the reference model, which failed: ") + e->what());
+    patch.warnings.push_back(std::string("peaks not checked: the reference model failed: ") + e->what());
     return;
   }
+  const PhysicalPeaks& x = *run.peaks;
   patch.a_priori_peaks = peak_fractions(x, patch.a_priori, p).scaled;
   if (o.autoscale) {
     if (!(o.headroom >= 0 && o.headroom < 1)) throw Error("the headroom must be in [0, 1)");
@@ -169,19 +186,10 @@ void check_and_autoscale(const Scene& s, const GearParameters& p, const PatchOpt
   overload_warnings(patch.bounded_peaks, patch.maxima, patch);
 }
 
-/// Table 1's order: alpha1 … alpha14, the extensions, then a, delta1, delta2.
-int rank(const std::string& name) {
-  static const std::vector<std::string> tail = {"alpha_tooth", "alpha_load", "alpha_lock",
-                                                "a", "delta1", "delta2"};
-  auto it = std::find(tail.begin(), tail.end(), name);
-  if (it != tail.end()) return 100 + static_cast<int>(it - tail.begin());
-  return std::stoi(name.substr(5));
-}
-
-void add_notes(const Scene& s, const GearParameters& p, const PatchOptions& o, const Table1& t,
+void add_notes(const ScalingInput& s, const GearParameters& p, const PatchOptions& o, const Table1& t,
                Patch& patch) {
   for (const auto& c : t.entries)
-    if (!c.remark.empty()) patch.notes.push_back(c.name + ": " + c.remark);
+    if (!c.remark.empty()) patch.notes.push_back(to_string(c.name) + ": " + c.remark);
   if (patch.k0 != 1)
     patch.notes.push_back(fmt::format("integrator coefficients are Table 1's values (k0 = 1) divided "
                                       "by this machine's k0 = {:g}", patch.k0));
@@ -209,7 +217,7 @@ constexpr double lock_catch_fraction = 1e-3;
 /// 16/17) is dialled at its strongest, α_lock = 1 at that weight, and stops a
 /// full-scale speed in 1/(n·k0·β) s of real time. Automatic β is raised until
 /// that is at most lock_catch_fraction of the run; an explicit β is warned about.
-void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1& t, TimeScale& ts) {
+void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, Table1& t, TimeScale& ts) {
   const int strongest = *std::max_element(s.machine.weights.begin(), s.machine.weights.end());
   const double k0 = s.machine.integrator_constant;
   const double needed = 1 / (strongest * k0 * lock_catch_fraction * s.duration);
@@ -220,9 +228,9 @@ void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1&
                              "(1/(n·k0·β) = {:.3g} s)",
                              ts.beta, strongest * k0, 100 * lock_catch_fraction, 1 / (strongest * k0 * ts.beta));
     for (const auto& c : t.entries)
-      if (c.kind == CoefficientKind::integrator && c.name != "alpha_lock" && c.rate / ts.beta / k0 < 0.1)
+      if (c.kind == CoefficientKind::integrator && c.name != Setting::alpha_lock && c.rate / ts.beta / k0 < 0.1)
         ts.warnings.push_back(fmt::format("{} = {:.3g} at β = {:g} is below 0.1: hard to set precisely",
-                                          c.name, c.rate / ts.beta / k0, ts.beta));
+                                          to_string(c.name), c.rate / ts.beta / k0, ts.beta));
   } else if (explicit_beta && ts.beta < needed) {
     ts.warnings.push_back(fmt::format(
         "at β = {:g} the self-locking reaction needs {:.3g} s to catch the load ({:.2g} % of the run): "
@@ -230,7 +238,7 @@ void strongest_lock(const Scene& s, std::optional<double> explicit_beta, Table1&
         100 / (strongest * k0 * ts.beta * s.duration), needed, 100 * lock_catch_fraction));
   }
   for (auto& c : t.entries)
-    if (c.name == "alpha_lock") {
+    if (c.name == Setting::alpha_lock) {
       c.rate = strongest * k0 * ts.beta;
       c.formula = "M_Rem/(Θs·β·φ̇sm), M_Rem the strongest the machine dials";
       c.remark = "the paper's k_Re → ∞: the reaction (6.7) is dialled as strong as the machine "
@@ -249,29 +257,43 @@ void check_finite(const Patch& patch) {
   };
   finite(patch.beta, "β");
   for (const Potentiometer& pot : patch.potentiometers) {
-    finite(pot.coefficient, pot.name);
-    finite(pot.setting, pot.name + " setting");
-    finite(pot.loaded_setting, pot.name + " loaded setting");
+    finite(pot.coefficient, to_string(pot.name));
+    finite(pot.setting, to_string(pot.name) + " setting");
+    finite(pot.loaded_setting, to_string(pot.name) + " loaded setting");
   }
 }
 
-}  // namespace
+PeakRun run_reference(const ScalingInput& s) {
+  PeakRun run;
+  try {
+    run.peaks = simulate_peaks(s);
+  } catch (const Error& e) {
+    run.failure = e;
+  }
+  return run;
+}
 
-Patch make_patch(const Scene& s, const PatchOptions& o) {
-  const GearParameters p = GearParameters::from_scene(s);
+/// make_patch, with the reference run given or, when the peaks are checked, made here.
+Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given) {
+  const GearParameters& p = s.gear;
   Patch patch;
   patch.scene = s.name;
+  patch.initial = s.initial;
+  patch.drive_torque = p.drive_torque;
+  patch.load_torque = p.load_torque;
+  patch.duration = s.duration;
+  patch.machine = s.machine;
   patch.k0 = s.machine.integrator_constant;
   patch.unit_volts = s.machine.unit_volts;
   if (!(o.comparator_offset > 0 && o.comparator_offset < 1))
     throw Error("the comparator offset must be in (0, 1) MU");
   if (o.beta && !(*o.beta > 0 && std::isfinite(*o.beta))) throw Error("β must be a number > 0");
-  patch.a_priori = patch.maxima = estimate_maxima(s, p, {o.round_speeds});
-  if (o.check_peaks || o.autoscale) check_and_autoscale(s, p, o, patch);
+  patch.a_priori = patch.maxima = estimate_maxima(s, {o.round_speeds});
+  if (o.check_peaks || o.autoscale) check_and_autoscale(p, o, given ? *given : run_reference(s), patch);
 
-  Table1 t = table1(s, p, patch.maxima);
+  Table1 t = table1(s, patch.maxima);
   std::stable_sort(t.entries.begin(), t.entries.end(),
-                   [](const auto& a, const auto& b) { return rank(a.name) < rank(b.name); });
+                   [](const auto& a, const auto& b) { return a.name < b.name; });  // Table 1's order
   std::vector<IntegratorRate> rates;
   for (const auto& c : t.entries)
     if (c.kind == CoefficientKind::integrator) rates.push_back({c.name, c.rate});
@@ -287,10 +309,20 @@ Patch make_patch(const Scene& s, const PatchOptions& o) {
   if (p.self_locking) patch.delta2 = o.comparator_offset;
   patch.unused = t.unused;
   std::stable_sort(patch.unused.begin(), patch.unused.end(),
-                   [](const auto& a, const auto& b) { return rank(a.first) < rank(b.first); });
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
   add_notes(s, p, o, t, patch);
   check_finite(patch);
   return patch;
+}
+
+}  // namespace
+
+Patch make_patch(const ScalingInput& input, const PatchOptions& options) {
+  return compose(input, options, nullptr);
+}
+
+Patch make_patch(const ScalingInput& input, const PatchOptions& options, const PeakRun& run) {
+  return compose(input, options, &run);
 }
 
 }  // namespace gearpatch

@@ -6,11 +6,15 @@
 #include <utility>
 #include <vector>
 
+#include "machine/machine_profile.h"
+#include "model/gear_state.h"
 #include "scaling/maxima.h"
+#include "scaling/peaks.h"
+#include "scaling/setting.h"
 
 namespace gearpatch {
 
-struct Scene;
+struct ScalingInput;
 
 /// One coefficient potentiometer of the patch: Table 1's coefficient split
 /// into a dial setting α in [0, 1] and an input weight n, and the dial
@@ -20,7 +24,8 @@ struct Scene;
 /// alpha12) have weight 1 and a signed coefficient: a negative one is taken
 /// from the −1 MU reference (`feeds` says which).
 struct Potentiometer {
-  std::string name, formula, feeds;
+  Setting name{};
+  std::string formula, feeds;
   double coefficient = 0, setting = 0, weight = 1, loaded_setting = 0;
 };
 
@@ -43,13 +48,19 @@ struct PatchOptions {
 /// scale (machine units; > 1 is an overload).
 struct Patch {
   std::string scene;   ///< the scene's name
+  // What the circuit takes from the scene besides the settings.
+  GearState initial;        ///< φ̇p(0), φ̇s(0), Δφ(0): the signed initial values
+  double drive_torque = 0;  ///< M_a, its sign for the drive source
+  double load_torque = 0;   ///< its sign picks the reference alpha_load takes
+  double duration = 1;      ///< s of real time
+  MachineProfile machine;
   double beta = 1, k0 = 1, unit_volts = 10;
   Maxima maxima;       ///< the maxima the settings use
   Maxima a_priori;     ///< section 6's estimate (equal to maxima without autoscale)
   std::vector<Potentiometer> potentiometers;
   std::optional<double> dead_zone;  ///< a = ε/Δφm, MU; empty without backlash
   double delta1 = 0, delta2 = 0;    ///< comparator offsets, MU (0 when unused)
-  std::vector<std::pair<std::string, std::string>> unused;  ///< name → reason
+  std::vector<std::pair<Setting, std::string>> unused;  ///< setting → reason
   std::map<std::string, double> peaks;          ///< signals that own a scale (Wp, Ws, DW, X, X', m, drive)
   std::map<std::string, double> bounded_peaks;  ///< dead zone, spring, damping, friction, lock
   std::map<std::string, double> a_priori_peaks; ///< `peaks` against the a-priori maxima
@@ -57,15 +68,18 @@ struct Patch {
   std::vector<std::string> warnings;  ///< overloads, hard-to-set coefficients, fast dynamics
   std::vector<std::string> notes;     ///< how the numbers were found
 
-  const Potentiometer* find(std::string_view name) const;
+  const Potentiometer* find(Setting name) const;
 };
 
 /// Settings for the scene: a-priori maxima (section 6), β, Table 1 split into
 /// α·n, loaded settings; with check_peaks a run of the reference model
 /// reports every signal's peak, with autoscale the maxima become the peaks
-/// plus headroom. Throws Error (input) for a coefficient no weight reaches,
-/// naming it and what to change.
-Patch make_patch(const Scene& scene, const PatchOptions& options = {});
+/// plus headroom. Throws Error (input, about the scene key to change) for a
+/// coefficient no weight reaches, naming it and what to change.
+Patch make_patch(const ScalingInput& input, const PatchOptions& options = {});
+/// The same with the reference run already done (verify runs it once for the
+/// peak check and its comparison).
+Patch make_patch(const ScalingInput& input, const PatchOptions& options, const PeakRun& run);
 
 /// What a potentiometer at dial position `dial` delivers into a load of
 /// `load_ratio` (λ = R_load/R_pot) times its own resistance:

@@ -11,7 +11,7 @@ using nlohmann::json;
 
 json maxima_json(const Maxima& m) {
   json j = json::object();
-  for (const auto& [key, value] : m.entries()) j[key] = value;
+  for (const auto& [key, value] : m.entries()) j[to_string(key)] = value;
   return j;
 }
 
@@ -27,11 +27,12 @@ std::string to_json(const Patch& patch) {
   j["k0"] = patch.k0;
   j["unit_volts"] = patch.unit_volts;
   j["maxima"] = maxima_json(patch.maxima);
-  j["maxima_basis"] = patch.maxima.basis;
+  j["maxima_basis"] = json::object();
+  for (const auto& [key, how] : patch.maxima.basis) j["maxima_basis"][to_string(key)] = how;
   j["a_priori_maxima"] = maxima_json(patch.a_priori);
   j["potentiometers"] = json::array();
   for (const auto& p : patch.potentiometers)
-    j["potentiometers"].push_back({{"name", p.name}, {"formula", p.formula},
+    j["potentiometers"].push_back({{"name", to_string(p.name)}, {"formula", p.formula},
                                    {"coefficient", p.coefficient}, {"setting", p.setting},
                                    {"weight", static_cast<int>(p.weight)},
                                    {"loaded_setting", p.loaded_setting}, {"feeds", p.feeds}});
@@ -39,7 +40,7 @@ std::string to_json(const Patch& patch) {
   j["delta1"] = optional_number(patch.delta1 > 0, patch.delta1);
   j["delta2"] = optional_number(patch.delta2 > 0, patch.delta2);
   j["unused"] = json::array();
-  for (const auto& [name, reason] : patch.unused) j["unused"].push_back({{"name", name}, {"reason", reason}});
+  for (const auto& [name, reason] : patch.unused) j["unused"].push_back({{"name", to_string(name)}, {"reason", reason}});
   j["peaks"] = patch.peaks;
   j["bounded_peaks"] = patch.bounded_peaks;
   j["a_priori_peaks"] = patch.a_priori_peaks;
@@ -70,16 +71,6 @@ std::string pad(const std::string& s, std::size_t width) {
   return w >= width ? s : s + std::string(width - w, ' ');
 }
 
-const char* symbol(const std::string& key) {
-  if (key == "drive_torque") return "M_am  N·m";
-  if (key == "speed_primary") return "φ̇pm   rad/s";
-  if (key == "speed_secondary") return "φ̇sm   rad/s";
-  if (key == "relative_speed") return "Δφ̇m   rad/s";
-  if (key == "contact_twist") return "Δφ'm  rad";
-  if (key == "twist") return "Δφm   rad";
-  return "M0m   N·m";
-}
-
 void maxima_section(const Patch& patch, std::string& out) {
   out += "maxima (the value 1 MU stands for):\n";
   Maxima a_priori = patch.a_priori;
@@ -87,7 +78,7 @@ void maxima_section(const Patch& patch, std::string& out) {
     auto basis = patch.maxima.basis.find(key);
     std::string how = basis == patch.maxima.basis.end() ? "" : basis->second;
     if (a_priori.at(key) != value) how += fmt::format(" (a priori {:.6g})", a_priori.at(key));
-    out += fmt::format("  {:<16} {} {:<11.6g} {}\n", key, pad(symbol(key), 12), value, how);
+    out += fmt::format("  {:<16} {} {:<11.6g} {}\n", to_string(key), pad(symbol(key), 12), value, how);
   }
 }
 
@@ -96,7 +87,7 @@ void settings_section(const Patch& patch, std::string& out) {
                      "  {:<12} {:>11} {:>8} {:>3} {:>8}   {} feeds\n", "name", "value α·n", "α", "n",
                      "loaded", pad("formula (Table 1)", 42));
   for (const auto& p : patch.potentiometers)
-    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}\n", p.name, p.coefficient,
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}\n", to_string(p.name), p.coefficient,
                        p.setting, static_cast<int>(p.weight), p.loaded_setting, pad(p.formula, 42),
                        p.feeds);
   if (patch.dead_zone)
@@ -111,7 +102,7 @@ void settings_section(const Patch& patch, std::string& out) {
                        "comparators (blocks 16/17)\n", "delta2", patch.delta2, patch.delta2, "", "",
                        pad("by experiment (default)", 42));
   if (!patch.unused.empty()) out += "\nleft out:\n";
-  for (const auto& [name, reason] : patch.unused) out += fmt::format("  {:<12} {}\n", name, reason);
+  for (const auto& [name, reason] : patch.unused) out += fmt::format("  {:<12} {}\n", to_string(name), reason);
 }
 
 void peaks_section(const Patch& patch, std::string& out) {

@@ -7,7 +7,7 @@
 #include "model/gear_model.h"
 #include "scaling/maxima.h"
 #include "scaling/table1.h"
-#include "scene/scene.h"
+#include "scaling/scaling_input.h"
 #include "solver/integrate.h"
 
 namespace gearpatch {
@@ -71,20 +71,22 @@ class PeakObserver : public Observer {
 
 }  // namespace
 
-PhysicalPeaks simulate_peaks(const Scene& scene, const GearParameters& p) {
+PhysicalPeaks simulate_peaks(const ScalingInput& in, const std::vector<Output>& more) {
+  const GearParameters& p = in.gear;
   const GearModel model(p);
-  RunSpec spec = RunSpec::from_scene(scene);
+  RunSpec spec;
+  spec.duration = in.duration;
   // At least 2000 samples per contact oscillation (a peak between two is
   // missed by at most 1 − cos(π/2000) ≈ 1.2e-6 of it), and no more than 2e6 in all.
   const double period = 2 * std::numbers::pi / contact_frequency(p);
-  spec.output_step = std::max(std::min(scene.duration / 20000, period / 2000), scene.duration / 2e6);
-  GearState start = initial_state(scene);
+  spec.output_step = std::max(std::min(in.duration / 20000, period / 2000), in.duration / 2e6);
+  GearState start = in.initial;
   const Mode first = model.initial_mode(start);
   PhysicalPeaks peaks;
   peaks.drive = std::abs(p.drive_torque);
   PeakObserver observer(model, first, peaks);
   auto stepper = make_exact_stepper();
-  integrate(model, *stepper, initial_state(scene), spec, observer);
+  integrate(model, *stepper, in.initial, spec, observer, more);
   return peaks;
 }
 

@@ -1,11 +1,16 @@
 #pragma once
 #include <map>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "common/error.h"
+#include "solver/integrate.h"
 
 namespace gearpatch {
 
-struct Scene;
 struct GearParameters;
+struct ScalingInput;
 struct Maxima;
 
 /// The largest magnitude of each physical quantity the circuit carries over
@@ -23,8 +28,16 @@ struct PhysicalPeaks {
   bool primary_moved = false, secondary_moved = false;
 };
 
-/// Runs the reference model (exact solver) over the scene's duration.
-PhysicalPeaks simulate_peaks(const Scene& scene, const GearParameters& p);
+/// Runs the reference model (exact solver) over the scene's duration; each of
+/// `more` sees the same run on its own output grid.
+PhysicalPeaks simulate_peaks(const ScalingInput& input, const std::vector<Output>& more = {});
+
+/// The reference run the peak check rests on: its peaks, or the error that
+/// stopped it (make_patch then warns, or refuses to autoscale).
+struct PeakRun {
+  std::optional<PhysicalPeaks> peaks;
+  std::optional<Error> failure;
+};
 
 /// Each signal's peak as a fraction of its scale (machine units).
 /// `scaled`: the signals that own a maximum (Wp, Ws, DW, X, X', m, drive);

@@ -4,11 +4,12 @@
 #include <vector>
 
 #include "scaling/maxima.h"
+#include "scaling/setting.h"
 
 namespace gearpatch {
 
-struct Scene;
 struct GearParameters;
+struct ScalingInput;
 
 /// Where a coefficient sits: an integrator input (its Table 1 value scales
 /// with 1/β and is divided by k0 on the machine), a summer or amplifier input
@@ -19,7 +20,7 @@ enum class CoefficientKind { integrator, summer, initial };
 /// and self-locking) before β is chosen: value = rate/β for integrator inputs,
 /// value itself otherwise.
 struct Coefficient {
-  std::string name;     ///< "alpha1" … "alpha14", "alpha_tooth", "alpha_load", "alpha_lock"
+  Setting name{};       ///< alpha1 … alpha14, alpha_tooth, alpha_load, alpha_lock
   std::string formula;  ///< as printed in Table 1 (or the extension's)
   std::string feeds;    ///< the amplifier and the signal it takes
   CoefficientKind kind = CoefficientKind::summer;
@@ -33,11 +34,11 @@ struct Coefficient {
 /// The entries a scene needs and the ones it leaves out, with the reason.
 struct Table1 {
   std::vector<Coefficient> entries;
-  std::vector<std::pair<std::string, std::string>> unused;  ///< name → reason
+  std::vector<std::pair<Setting, std::string>> unused;  ///< setting → reason
 };
 
 /// Table 1 for the circuit of Bild 4 as gearpatch patches it, from the maxima.
-Table1 table1(const Scene& scene, const GearParameters& p, const Maxima& m);
+Table1 table1(const ScalingInput& input, const Maxima& m);
 
 /// The fastest contact oscillation, rad/s of real time:
 /// sqrt(c·(1/Θp + (1 + k_z)/Θs)) (sqrt(c/Θ) without tooth friction).

@@ -5,7 +5,7 @@
 #include <fmt/format.h>
 
 #include "scaling/maxima.h"
-#include "scene/machine.h"
+#include "machine/machine_profile.h"
 
 namespace gearpatch {
 
@@ -27,7 +27,7 @@ std::vector<std::string> checks(const std::vector<IntegratorRate>& rates, double
     const double value = r.rate / (beta * k0);
     if (value < low)
       w.push_back(fmt::format("{} = {:.4g} at β = {:g} is below {:g}: a potentiometer set that low "
-                              "is hard to set precisely", r.name, value, beta, low));
+                              "is hard to set precisely", to_string(r.name), value, beta, low));
   }
   const double limit = max_machine_frequency_per_k0 * k0;
   if (omega / beta > limit)
@@ -60,14 +60,14 @@ TimeScale choose_time_scale(const std::vector<IntegratorRate>& rates, double ome
   std::string bound =
       by_coefficient >= by_oscillation
           ? fmt::format("{} = {:.4g}/(β·k0) must stay <= {:g} (the largest weight), so β >= {:.4g}",
-                        largest->name, largest->rate, high, by_coefficient)
+                        to_string(largest->name), largest->rate, high, by_coefficient)
           : fmt::format("the contact oscillation sqrt(c/Θ) = {:.4g} rad/s must stay <= {:g}·k0 rad/s "
                         "of machine time, so β >= {:.4g}",
                         omega, max_machine_frequency_per_k0, by_oscillation);
   ts.reason = fmt::format("β = {:g}, the smallest 1-2-5 value that fits: {}", ts.beta, bound);
   if (ts.beta <= upper * (1 + 1e-9)) {
     ts.reason += fmt::format("; every integrator coefficient is then in [{:g}, {:g}] "
-                             "(smallest {} = {:.4g})", low, high, smallest->name,
+                             "(smallest {} = {:.4g})", low, high, to_string(smallest->name),
                              smallest->rate / (ts.beta * k0));
   } else {
     ts.reason += fmt::format("; the integrator coefficients spread {:.3g}:1, wider than {:g}:1, "

@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include "scaling/setting.h"
+
 namespace gearpatch {
 
 struct MachineProfile;
@@ -10,7 +12,7 @@ struct MachineProfile;
 /// An integrator coefficient of Table 1 as a function of β: value = rate/β
 /// per machine second at k0 = 1 (e.g. alpha3: rate = M0m/(Θp·φ̇pm), 1/s).
 struct IntegratorRate {
-  std::string name;
+  Setting name{};
   double rate = 0;
 };
 

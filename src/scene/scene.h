@@ -3,7 +3,7 @@
 #include <optional>
 #include <string>
 
-#include "scene/machine.h"
+#include "machine/machine_profile.h"
 
 namespace gearpatch {
 

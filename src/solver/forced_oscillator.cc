@@ -95,12 +95,6 @@ double ForcedOscillator::sampling_step() const {
   return 0.25 / (g - decay_);  // the faster of the two decays
 }
 
-double ForcedOscillator::slowest_sampling_step() const {
-  if (kappa_ == 0 || disc_ > 0) return sampling_step();
-  const double g = std::sqrt(-disc_);
-  return std::max(sampling_step(), 0.25 / std::max(-(decay_ + g), 1e-300));
-}
-
 double ForcedOscillator::vertex() const {
   if (kappa_ != 0 || force_ == 0) return -1;
   return -v0_ / force_;

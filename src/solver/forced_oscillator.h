@@ -29,11 +29,8 @@ class ForcedOscillator {
   /// period when oscillating, a quarter of the fastest decay time otherwise; 0
   /// in free flight (where `vertex` gives the only turning point).
   double sampling_step() const;
-  /// The step once the fast part has decayed (equal to sampling_step() unless over-damped).
-  double slowest_sampling_step() const;
   /// The time of u's extremum in free flight (negative if none ahead).
   double vertex() const;
-  bool oscillating() const { return kappa_ > 0; }
   bool underdamped() const { return kappa_ > 0 && disc_ > 0; }
 
  private:

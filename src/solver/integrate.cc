@@ -6,7 +6,6 @@
 #include <numbers>
 
 #include "common/error.h"
-#include "scene/scene.h"
 #include "solver/event_locator.h"
 
 namespace gearpatch {
@@ -15,9 +14,8 @@ namespace {
 /// Emits the output grid t_k = min(k·dt, T) as the solution becomes known.
 class OutputGrid {
  public:
-  OutputGrid(const RunSpec& spec)
-      : dt_(spec.output_step), end_(spec.duration),
-        last_(static_cast<long>(spec.rows()) - 1) {}
+  OutputGrid(double step, double duration)
+      : dt_(step), end_(duration), last_(static_cast<long>(std::ceil(duration / step - 1e-9))) {}
 
   template <class StateAt>
   void emit_through(double b, const Mode& mode, StateAt&& state_at, Observer& observer) {
@@ -98,7 +96,7 @@ class EventBudget {
       "bearing friction that holds the primary), or end the run before this time (run.duration)";
 
   [[noreturn]] void stuck(const EventRecord& e) const {
-    throw Error(fmt::format(
+    throw Error::about_scene("", fmt::format(
         "the model is stuck at t = {} s: {} events without time passing ({}), now in mode {}: {}",
         e.t, stalled_, shares(stalled_kinds_, stalled_), to_string(e.mode_after),
         4 * stalled_locks_ >= stalled_
@@ -118,7 +116,7 @@ class EventBudget {
             ? lock_advice
             : "shorten the run (run.duration), or make the events rarer: contact damping "
               "(restitution < 1), a softer coupling (stiffness) or more backlash";
-    throw Error(fmt::format(
+    throw Error::about_scene("", fmt::format(
         "too many events: {} by t = {:.9g} s of the {:g} s run, {} per second of model time "
         "lately ({}); at that rate the run needs {} events, more than the limit of {}: {}",
         events_, t, spec_.duration,
@@ -154,7 +152,7 @@ class StepBudget {
     if (steps_ > spec_.max_steps || needed > 2.0 * spec_.max_steps) {
       const ModeDynamics d = model.dynamics(mode);
       const double weight = d.inv_p + d.inv_s * d.gain_s;
-      throw Error(fmt::format(
+      throw Error::about_scene("", fmt::format(
           "too many solver steps: {} by t = {:.9g} s of the {:g} s run, in mode {} lately; at that "
           "rate the run needs {} steps, more than the limit of {}: {}shorten the run "
           "(run.duration), or make the contact oscillation slower (gear.stiffness) or damped "
@@ -186,14 +184,14 @@ class StepBudget {
   const ModeDynamics d = model.dynamics(mode);
   const double resolution = std::nextafter(t, INFINITY) - t;
   if (!d.coupled)
-    throw Error(fmt::format("the solver cannot step past t = {:.9g} s of the {:g} s run in mode "
+    throw Error::about_scene("", fmt::format("the solver cannot step past t = {:.9g} s of the {:g} s run in mode "
                             "{}: its step fell below the resolution of the time axis there "
                             "({:.3g} s); shorten run.duration",
                             t, spec.duration, to_string(mode), resolution));
   const double weight = d.inv_p + d.inv_s * d.gain_s;
   const double period = 2 * std::numbers::pi / std::sqrt(weight * d.stiffness);
   const double decay = d.damping > 0 ? 2 / (weight * d.damping) : INFINITY;
-  throw Error(fmt::format(
+  throw Error::about_scene("", fmt::format(
       "the solver cannot step past t = {:.9g} s of the {:g} s run in mode {}: the contact "
       "oscillates with a period of {:.3g} s{}, too short to sample (1/16 of a period per step) "
       "on the time axis there, whose resolution is {:.3g} s; lower gear.stiffness{}, or shorten "
@@ -203,12 +201,41 @@ class StepBudget {
       resolution, d.damping > 0 ? " or the damping" : ""));
 }
 
+/// Every output grid of the run with the observer that sees it.
+class Outputs {
+ public:
+  Outputs(const RunSpec& spec, Observer& observer, const std::vector<Output>& more) {
+    add(spec.output_step, spec.duration, observer);
+    for (const Output& o : more) add(o.step, spec.duration, o.observer);
+  }
+
+  template <class StateAt>
+  void emit_through(double b, const Mode& mode, StateAt&& state_at) {
+    for (auto& [grid, observer] : grids_) grid.emit_through(b, mode, state_at, *observer);
+  }
+  void event(const EventRecord& record) {
+    for (auto& grid : grids_) grid.second->event(record);
+  }
+
+ private:
+  void add(double step, double duration, Observer& observer) {
+    constexpr double most_rows = 1e8;
+    if (!(step > 0) || !(duration / step <= most_rows))
+      throw Error(fmt::format("an output step of {:g} s gives {:.3g} rows over the {:g} s run, more "
+                              "than the {:g} a run may write: raise run.output_step (or --dt)",
+                              step, duration / step, duration, most_rows));
+    grids_.emplace_back(OutputGrid(step, duration), &observer);
+  }
+
+  std::vector<std::pair<OutputGrid, Observer*>> grids_;
+};
+
 }  // namespace
 
 void integrate(const GearModel& model, Stepper& stepper, GearState state, const RunSpec& spec,
-               Observer& observer) {
+               Observer& observer, const std::vector<Output>& more) {
   check_output_grid(spec);
-  OutputGrid grid(spec);
+  Outputs outputs(spec, observer, more);
   Mode mode = model.initial_mode(state);
   double t = 0;
   EventBudget budget(spec);
@@ -218,7 +245,7 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     const Crossing crossing = locate_first_crossing(
         *segment, model.guards(mode), t, [&](double, double b) {
           steps.count(b, model, mode);
-          grid.emit_through(b, mode, [&](double s) { return segment->state_at(s); }, observer);
+          outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
         });
     GearState before = segment->state_at(crossing.time);
     if (!crossing.kind) {
@@ -232,9 +259,9 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     mode = model.cross(mode, *crossing.kind, state);
     const EventRecord record{t, *crossing.kind, before, state, previous, mode};
     budget.count(record, model);
-    observer.event(record);
+    outputs.event(record);
   }
-  grid.emit_through(spec.duration, mode, [&](double) { return state; }, observer);
+  outputs.emit_through(spec.duration, mode, [&](double) { return state; });
 }
 
 void check_output_grid(const RunSpec& spec) {
@@ -245,17 +272,6 @@ void check_output_grid(const RunSpec& spec) {
                             "than the {:g} a run may write (about 130 bytes each in memory): raise "
                             "run.output_step (or --dt)",
                             spec.output_step, spec.rows(), spec.duration, RunSpec::max_rows));
-}
-
-RunSpec RunSpec::from_scene(const Scene& scene) {
-  RunSpec spec;
-  spec.duration = scene.duration;
-  spec.output_step = scene.output_step.value_or(scene.duration / 2000);
-  return spec;
-}
-
-GearState initial_state(const Scene& scene) {
-  return {scene.speed_primary, scene.speed_secondary, scene.twist};
 }
 
 SolverKind parse_solver(const std::string& name) {

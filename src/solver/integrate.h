@@ -2,14 +2,13 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "model/gear_model.h"
 #include "solver/segment.h"
 #include "solver/trajectory.h"
 
 namespace gearpatch {
-
-struct Scene;
 
 /// What the run is asked for: length, output grid, and the bounds on events
 /// and on solver steps that stop a run whose cost would grow without bound.
@@ -25,24 +24,26 @@ struct RunSpec {
   /// Rows of the output grid t_k = min(k·output_step, duration), as a double
   /// so that a tiny step cannot overflow the count.
   double rows() const { return std::ceil(duration / output_step - 1e-9) + 1; }
-
-  /// The scene's duration and output step (default: 2000 intervals).
-  static RunSpec from_scene(const Scene& scene);
 };
 
 /// Throws Error (input) unless the output step is finite and positive and the
 /// grid within RunSpec::max_rows: checked before anything is allocated for it.
 void check_output_grid(const RunSpec& spec);
 
-/// The scene's initial speeds and twist.
-GearState initial_state(const Scene& scene);
+/// A further output grid of one run and the observer that sees it (verify
+/// checks the peaks on a fine grid and compares on the deck's).
+struct Output {
+  double step;
+  Observer& observer;
+};
 
 /// Integrates the hybrid model from `initial`: mode by mode, each segment
 /// from `stepper`, each mode ended by the first guard crossing; the observer
-/// sees the output grid and the events. Throws Error if the run makes no
-/// progress (events without time passing) or exceeds max_events.
+/// sees the output grid and the events, and each of `more` its own grid and
+/// the same events. Throws Error if the run makes no progress (events without
+/// time passing) or exceeds max_events.
 void integrate(const GearModel& model, Stepper& stepper, GearState initial, const RunSpec& spec,
-               Observer& observer);
+               Observer& observer, const std::vector<Output>& more = {});
 
 /// Which reference solver to use.
 enum class SolverKind { exact, adaptive };

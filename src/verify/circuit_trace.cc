@@ -13,7 +13,7 @@ CircuitTrace unscale(const spice::Vectors& v, const circuit::Circuit& c, double 
     const auto& volts = v.at(voltage_vector(probe.node));
     auto& out = trace.signals[name];
     out.reserve(volts.size());
-    for (double x : volts) out.push_back(probe.sign * x / unit * probe.full_scale);
+    for (double x : volts) out.push_back(x / unit * probe.full_scale);
   }
   return trace;
 }

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "circuit/circuit.h"
+#include "solver/signal.h"
 #include "spice/simulator.h"
 
 namespace gearpatch::verify {
@@ -13,7 +14,7 @@ namespace gearpatch::verify {
 /// machine time divided by β — the same factors `settings` printed.
 struct CircuitTrace {
   std::vector<double> t;
-  std::map<std::string, std::vector<double>> signals;  ///< omega_p, omega_s, dphi, m0
+  std::map<Signal, std::vector<double>> signals;
 };
 
 CircuitTrace unscale(const spice::Vectors& vectors, const circuit::Circuit& circuit, double unit_volts);

@@ -55,7 +55,7 @@ void compare_impacts(const Trajectory& ref, const CircuitTrace& c, const GearMod
                      double duration, Comparison& out) {
   const double eps = model.parameters().half_backlash;
   if (eps == 0) return;
-  const std::vector<double> found = crossings(c.t, c.signals.at("dphi"), eps, true);
+  const std::vector<double> found = crossings(c.t, c.signals.at(Signal::dphi), eps, true);
   out.circuit_impacts = static_cast<int>(found.size());
   for (const auto& e : ref.events) {
     if (e.kind != GuardKind::contact_positive && e.kind != GuardKind::contact_negative) continue;
@@ -67,9 +67,9 @@ void compare_impacts(const Trajectory& ref, const CircuitTrace& c, const GearMod
     out.impacts.push_back(impact);
   }
   if (!frictionless_and_free(model.parameters())) return;
-  const auto& wp = c.signals.at("omega_p");
-  const auto& ws = c.signals.at("omega_s");
-  const std::vector<double> releases = crossings(c.t, c.signals.at("dphi"), eps, false);
+  const auto& wp = c.signals.at(Signal::omega_p);
+  const auto& ws = c.signals.at(Signal::omega_s);
+  const std::vector<double> releases = crossings(c.t, c.signals.at(Signal::dphi), eps, false);
   for (double begin : found) {
     auto end = std::upper_bound(releases.begin(), releases.end(), begin);
     if (end == releases.end()) break;
@@ -79,13 +79,12 @@ void compare_impacts(const Trajectory& ref, const CircuitTrace& c, const GearMod
   }
 }
 
-double signal_of(const std::string& name, const GearModel& model, const Mode& mode, const GearState& s) {
-  return name == "omega_p" ? s.omega_p : name == "omega_s" ? s.omega_s
-       : name == "dphi" ? s.dphi : model.torque(mode, s);
+double signal_of(Signal signal, const GearModel& model, const Mode& mode, const GearState& s) {
+  return value({0, s.omega_p, s.omega_s, s.dphi, model.torque(mode, s)}, signal);
 }
 
 /// Times at which the reference signal is discontinuous.
-std::vector<double> jumps_of(const std::string& name, const Trajectory& ref, const GearModel& model,
+std::vector<double> jumps_of(Signal name, const Trajectory& ref, const GearModel& model,
                              double scale) {
   std::vector<double> times;
   for (const auto& e : ref.events) {
@@ -99,7 +98,7 @@ std::vector<double> jumps_of(const std::string& name, const Trajectory& ref, con
 }  // namespace
 
 Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel& model,
-                   const std::vector<std::pair<std::string, double>>& full_scales, double duration,
+                   const std::vector<std::pair<Signal, double>>& full_scales, double duration,
                    double jump_window) {
   Comparison out;
   std::vector<double> times;
@@ -107,8 +106,7 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
   for (const auto& [name, scale] : full_scales) {
     std::vector<double> reference;
     for (const Sample& s : ref.samples)
-      reference.push_back(name == "omega_p" ? s.omega_p : name == "omega_s" ? s.omega_s
-                          : name == "dphi" ? s.dphi : s.m0);
+      reference.push_back(value(s, name));
     const std::vector<double> circuit = interpolate(c.t, c.signals.at(name), times);
     SignalError e{name, scale};
     const std::vector<double> jumps = jumps_of(name, ref, model, scale);
@@ -139,8 +137,8 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
   compare_impacts(ref, c, model, duration, out);
   if (frictionless_and_free(model.parameters())) {
     const auto& p = model.parameters();
-    const auto& wp = c.signals.at("omega_p");
-    const auto& ws = c.signals.at("omega_s");
+    const auto& wp = c.signals.at(Signal::omega_p);
+    const auto& ws = c.signals.at(Signal::omega_s);
     const double p0 = p.inertia_primary * ref.samples.front().omega_p +
                       p.inertia_secondary * ref.samples.front().omega_s;
     const double scale = std::max(std::abs(p0), 1e-300);

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "model/gear_model.h"
+#include "solver/signal.h"
 #include "solver/trajectory.h"
 #include "verify/circuit_trace.h"
 
@@ -10,7 +11,7 @@ namespace gearpatch::verify {
 
 /// Disagreement of one signal, as fractions of its full scale (1 MU).
 struct SignalError {
-  std::string name;
+  Signal signal{};
   double full_scale = 1;
   double max_error = 0;
   double rms_error = 0;
@@ -44,7 +45,7 @@ struct Comparison {
 /// `jump_window` seconds of a jump are left out of that signal's errors, and
 /// the impact times are checked instead.
 Comparison compare(const Trajectory& reference, const CircuitTrace& circuit, const GearModel& model,
-                   const std::vector<std::pair<std::string, double>>& full_scales, double duration,
+                   const std::vector<std::pair<Signal, double>>& full_scales, double duration,
                    double jump_window);
 
 }  // namespace gearpatch::verify

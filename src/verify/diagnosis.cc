@@ -87,7 +87,7 @@ void small_settings(const Patch& patch, std::vector<std::string>& out) {
   for (const Potentiometer& p : patch.potentiometers)
     if (p.setting < 0.1 && p.setting > 0)
       out.push_back(fmt::format("{} is set to {:.4g} (< 0.1): small settings are imprecise on a real "
-                                "potentiometer; change β or the maxima", p.name, p.setting));
+                                "potentiometer; change β or the maxima", to_string(p.name), p.setting));
 }
 
 }  // namespace

@@ -9,13 +9,6 @@
 #include "common/gnuplot.h"
 
 namespace gearpatch::verify {
-namespace {
-
-const char* unit_of(const std::string& signal) {
-  return signal == "dphi" ? "rad" : signal == "m0" ? "N·m" : "rad/s";
-}
-
-}  // namespace
 
 std::string to_table(const VerifyResult& r) {
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {}\n\n",
@@ -23,13 +16,13 @@ std::string to_table(const VerifyResult& r) {
   t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12}  {}\n", "signal", "full scale", "unit",
                    "max error %", "rms error %", "worst at t [s]");
   for (const auto& e : r.comparison.signals)
-    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f}  {:.6g}\n", e.name, e.full_scale,
-                     unit_of(e.name), 100 * e.max_error, 100 * e.rms_error, e.time_of_max);
+    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f}  {:.6g}\n", to_string(e.signal),
+                     e.full_scale, unit(e.signal), 100 * e.max_error, 100 * e.rms_error, e.time_of_max);
   for (const auto& e : r.comparison.signals)
     if (e.jumps > 0)
       t += fmt::format("  {} jumps {} times in the reference: compared outside +-{:.4g} s of each "
                        "({} samples left out; the impact times check those instants)\n",
-                       e.name, e.jumps, r.jump_window, e.excluded);
+                       to_string(e.signal), e.jumps, r.jump_window, e.excluded);
   const auto& c = r.comparison;
   if (!c.impacts.empty())
     t += fmt::format("\nimpacts: reference {}, circuit {}; worst time shift {:.4f} % of the run\n",
@@ -43,6 +36,7 @@ std::string to_table(const VerifyResult& r) {
     t += fmt::format("momentum drift (circuit, no friction): {:.4f} %\n", 100 * c.momentum_drift);
   for (const auto& o : r.overloads)
     t += fmt::format("OVERLOAD {} = {:.4g} MU at t = {:.6g} s\n", o.node, o.value, o.t);
+  for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
   t += fmt::format("ngspice: {:.2f} s\n\n", r.ngspice_seconds);
   if (r.passed) return t + "PASS\n";
   t += "FAIL\n";
@@ -61,7 +55,7 @@ std::string to_json(const VerifyResult& r) {
   j["beta"] = r.beta;
   j["ngspice_seconds"] = r.ngspice_seconds;
   for (const auto& e : r.comparison.signals)
-    j["signals"][e.name] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
+    j["signals"][to_string(e.signal)] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
                             {"rms_error", e.rms_error}, {"time_of_max", e.time_of_max},
                             {"jumps", e.jumps}, {"excluded_samples", e.excluded}};
   j["jump_window"] = r.jump_window;
@@ -76,6 +70,7 @@ std::string to_json(const VerifyResult& r) {
   for (const auto& o : r.overloads) j["overloads"].push_back({{"node", o.node}, {"t", o.t}, {"value", o.value}});
   j["failures"] = r.failures;
   j["diagnosis"] = r.diagnosis;
+  j["warnings"] = r.warnings;
   // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
@@ -87,8 +82,9 @@ std::string plot_image(const VerifyResult& r, const std::string& format) {
   script += "EOD\n$circuit << EOD\n";
   const auto& c = r.circuit;
   for (std::size_t i = 0; i < c.t.size(); ++i)
-    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at("omega_p")[i], c.signals.at("omega_s")[i],
-                          c.signals.at("dphi")[i], c.signals.at("m0")[i]);
+    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at(Signal::omega_p)[i],
+                          c.signals.at(Signal::omega_s)[i], c.signals.at(Signal::dphi)[i],
+                          c.signals.at(Signal::m0)[i]);
   // The scene's name is the user's text: a string literal, never code.
   script += fmt::format("EOD\nset multiplot layout 4,1 title {} noenhanced\nset grid\nset key right top\n",
                         gnuplot_string(fmt::format("gearpatch verify {} ({}): {}", r.scene, level_name(r.level),

@@ -36,6 +36,7 @@ struct VerifyResult {
   bool passed = false;
   std::vector<std::string> failures;   ///< one sentence per reason, empty when passed
   std::vector<std::string> diagnosis;  ///< likely causes, for a failure
+  std::vector<std::string> warnings;   ///< the patch's: overloads, hard-to-set coefficients
   Comparison comparison;
   std::vector<Overload> overloads;
   double beta = 1;

@@ -1,4 +1,4 @@
-#include "bench/quality.h"
+#include "circuit/quality.h"
 
 #include <cmath>
 #include <fmt/format.h>
@@ -6,7 +6,7 @@
 #include "common/error.h"
 #include "common/numbers.h"
 
-namespace gearpatch::bench {
+namespace gearpatch::circuit {
 
 // The measured numbers below are copied from bench/results/examples.json
 // ("presets"), written by the command in preset_source(); a test checks that
@@ -39,12 +39,12 @@ std::string preset_source() {
   return "bench/results/examples.json, ideal level; reproduce: gearpatch bench scenes/*.ini";
 }
 
-bool same_control(const circuit::TransientControl& a, const circuit::TransientControl& b) {
+bool same_control(const TransientControl& a, const TransientControl& b) {
   return a.output_points == b.output_points && a.max_step_points == b.max_step_points &&
          a.reltol == b.reltol && a.method == b.method;
 }
 
-std::string describe(const circuit::TransientControl& c) {
+std::string describe(const TransientControl& c) {
   return fmt::format("out={} tmax=T/{} reltol={} {}", c.output_points, format_number(c.max_step_points),
                      format_number(c.reltol), c.method);
 }
@@ -80,4 +80,4 @@ std::string quality_markdown() {
   return text;
 }
 
-}  // namespace gearpatch::bench
+}  // namespace gearpatch::circuit

@@ -5,7 +5,7 @@
 
 #include "circuit/netlist.h"
 
-namespace gearpatch::bench {
+namespace gearpatch::circuit {
 
 /// A named set of ngspice transient settings that a user picks instead of
 /// tuning them by hand (`verify --quality NAME`), with what `gearpatch bench`
@@ -16,7 +16,7 @@ namespace gearpatch::bench {
 struct QualityPreset {
   std::string name;
   std::string summary;
-  circuit::TransientControl control;
+  TransientControl control;
   double measured_worst_error = 0;    ///< fraction of full scale, worst over the scenes
   double measured_median_error = 0;   ///< fraction of full scale, median over the scenes
   double measured_total_seconds = 0;  ///< ngspice CPU time, all example scenes
@@ -42,9 +42,9 @@ std::string quality_help();
 std::string quality_markdown();
 
 /// True if two transient settings are the same.
-bool same_control(const circuit::TransientControl& a, const circuit::TransientControl& b);
+bool same_control(const TransientControl& a, const TransientControl& b);
 
 /// "out=2000 tmax=T/4000 reltol=1e-07 gear": the settings in a few words.
-std::string describe(const circuit::TransientControl& control);
+std::string describe(const TransientControl& control);
 
-}  // namespace gearpatch::bench
+}  // namespace gearpatch::circuit

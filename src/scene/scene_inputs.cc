@@ -1,0 +1,60 @@
+#include "scene/scene_inputs.h"
+
+#include "model/restitution.h"
+
+namespace gearpatch {
+
+GearParameters gear_parameters(const Scene& s) {
+  GearParameters p;
+  p.inertia_primary = s.inertia_primary;
+  p.inertia_secondary = s.inertia_secondary;
+  p.stiffness = s.stiffness;
+  p.half_backlash = s.backlash / 2;
+  p.damping = s.damping ? *s.damping
+                        : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
+  p.bearing_primary = s.bearing_primary;
+  p.bearing_secondary = s.bearing_secondary;
+  p.tooth_friction = 1.0 - s.mesh_efficiency;
+  p.self_locking = s.self_locking;
+  p.drive_torque = s.drive_torque;
+  p.load_torque = s.load_torque;
+  return p;
+}
+
+GearState initial_state(const Scene& s) { return {s.speed_primary, s.speed_secondary, s.twist}; }
+
+RunSpec run_spec(const Scene& s) {
+  RunSpec spec;
+  spec.duration = s.duration;
+  spec.output_step = s.output_step.value_or(s.duration / 2000);
+  return spec;
+}
+
+ScalingInput scaling_input(const Scene& s) {
+  ScalingInput in;
+  in.name = s.name;
+  in.gear = gear_parameters(s);
+  in.initial = initial_state(s);
+  in.duration = s.duration;
+  in.rated_torque = s.rated_torque;
+  in.rated_speed = s.rated_speed;
+  for (const auto& [key, value] : s.maxima) {
+    const auto maximum = parse_maximum(key);
+    if (!maximum) throw Error(s.where("maxima." + key) + ": maxima." + key + ": unknown maximum");
+    in.maxima[*maximum] = value;
+  }
+  in.machine = s.machine;
+  return in;
+}
+
+Error located(const Scene& scene, const Error& error) {
+  if (!error.scene_key()) return error;
+  const std::string& key = *error.scene_key();
+  return Error((key.empty() ? scene.source : scene.where(key)) + ": " + error.what(), error.kind());
+}
+
+Patch make_patch(const Scene& scene, const PatchOptions& options) {
+  return with_scene(scene, [&] { return make_patch(scaling_input(scene), options); });
+}
+
+}  // namespace gearpatch

@@ -1,0 +1,40 @@
+#include "solver/signal.h"
+
+namespace gearpatch {
+namespace {
+
+/// The one table of the signals: identity, name and unit.
+struct SignalName {
+  Signal signal;
+  const char* name;
+  const char* unit;
+};
+constexpr SignalName signal_table[] = {
+    {Signal::omega_p, "omega_p", "rad/s"},
+    {Signal::omega_s, "omega_s", "rad/s"},
+    {Signal::dphi, "dphi", "rad"},
+    {Signal::m0, "m0", "N·m"},
+};
+
+const SignalName& row(Signal signal) {
+  for (const auto& r : signal_table)
+    if (r.signal == signal) return r;
+  return signal_table[0];  // not reached: every Signal has a row
+}
+
+}  // namespace
+
+std::string to_string(Signal signal) { return row(signal).name; }
+std::string unit(Signal signal) { return row(signal).unit; }
+
+double value(const Sample& s, Signal signal) {
+  switch (signal) {
+    case Signal::omega_p: return s.omega_p;
+    case Signal::omega_s: return s.omega_s;
+    case Signal::dphi: return s.dphi;
+    case Signal::m0: return s.m0;
+  }
+  return 0;  // not reached
+}
+
+}  // namespace gearpatch
