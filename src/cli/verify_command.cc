@@ -7,6 +7,7 @@
 #include "common/error.h"
 #include "common/gnuplot.h"
 #include "scene/scene.h"
+#include "spice/deck_reader.h"
 #include "verify/report.h"
 #include "verify/verify.h"
 
@@ -23,7 +24,10 @@ int run_verify(const std::vector<std::string>& args) {
                    verify::default_tolerance(circuit::Level::hardware)).c_str())
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
        "(as settings --autoscale) instead of the paper's a-priori maxima")
-      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
+      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one; "
+       "ngspice runs it as written, so a deck with .control blocks (which can run shell commands), "
+       "*# commands or .include/.lib is refused unless --allow-control")
+      ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s")
@@ -45,7 +49,10 @@ int run_verify(const std::vector<std::string>& args) {
   }
   o.autoscale = vm.count("autoscale") > 0;
   o.transient = chosen_quality(vm);
-  if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
+  if (vm.count("deck")) {
+    o.deck_text = read_file(vm["deck"].as<std::string>());
+    if (!vm.count("allow-control")) spice::refuse_deck_commands(*o.deck_text, vm["deck"].as<std::string>());
+  }
   const double timeout = vm["timeout"].as<double>();
   if (!(timeout > 0)) throw Error("--timeout must be > 0");
   o.limits.timeout = std::chrono::milliseconds(static_cast<long long>(timeout * 1000));
