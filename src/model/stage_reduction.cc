@@ -11,6 +11,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/numbers.h"
+#include "common/option_error.h"
 
 namespace gearpatch {
 namespace po = boost::program_options;
@@ -63,7 +64,7 @@ std::vector<ElasticStage> parse_stages(const std::string& text, const std::strin
   try {
     po::store(po::parse_config_file(in, d, false), vm);
   } catch (const po::error& e) {
-    throw Error(source + ": " + e.what() + " (each [stage] holds stiffness and damping)");
+    throw Error(source + ": " + option_error_message(e) + " (each [stage] holds stiffness and damping)");
   }
   const auto lines = locate_stage_keys(text);
   // "file:line: stage i: key = value: why", the scene parser's form.

@@ -9,6 +9,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/numbers.h"
+#include "common/option_error.h"
 
 namespace gearpatch {
 namespace po = boost::program_options;
@@ -109,7 +110,7 @@ std::map<std::string, std::string> read_values(const std::string& text, Scene& s
     parsed = po::parse_config_file(in, description, true);
   } catch (const po::error& e) {
     int line = first_line_without_equals(text);
-    throw Error(scene.source + (line ? ":" + std::to_string(line) : "") + ": " + e.what());
+    throw Error(scene.source + (line ? ":" + std::to_string(line) : "") + ": " + option_error_message(e));
   }
   std::map<std::string, std::string> values;
   for (const auto& option : parsed.options) {
