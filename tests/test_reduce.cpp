@@ -58,6 +58,7 @@ TEST_CASE("stage values beyond what the sweep computes with are refused by file,
   // reduce_stages guards itself for callers that skip the parser
   CHECK_THROWS_WITH(reduce_stages({{1, 1e-310}}), Catch::Contains("stage 1: damping = 1e-310"));
   CHECK_THROWS_AS(reduce_stages({}), Error);
+  CHECK_THROWS_WITH(reduce_stages({{NAN, 1}}), Catch::Contains("not a finite number"));
 }
 
 TEST_CASE("the widest stages in range reduce in bounded time", "[model]") {

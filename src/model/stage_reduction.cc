@@ -25,6 +25,7 @@ constexpr double largest_magnitude = 1e30, smallest_magnitude = 1e-30;
 /// Why a stiffness or damping cannot be used, or empty if it can.
 std::string out_of_range(const char* key, double value) {
   const bool stiffness = std::string_view(key) == "stiffness";
+  if (!std::isfinite(value)) return "not a finite number";
   if (stiffness && value <= 0) return "must be > 0";
   if (!stiffness && value < 0) return "must be >= 0";
   if (value > largest_magnitude)
