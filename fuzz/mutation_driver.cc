@@ -150,60 +150,76 @@ void run(const std::string& input, unsigned timeout_s) {
   if (timeout_s) ::alarm(0);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+/// The command line: libFuzzer's flags this driver knows, and the seed paths.
+struct Flags {
   std::uint64_t seed = 1, runs = 0;
   double max_time = 0;
   unsigned timeout_s = 0;
-  std::string prefix;
   std::size_t max_len = 1 << 16;
-  std::vector<std::string> tokens, seeds;
+  std::string prefix;
+  std::vector<std::string> tokens, seed_paths;
+};
+
+Flags parse_flags(int argc, char** argv) {
+  Flags f;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* flag) { return arg.substr(std::strlen(flag)); };
-    if (arg.rfind("-seed=", 0) == 0) seed = std::stoull(value("-seed="));
-    else if (arg.rfind("-runs=", 0) == 0) runs = std::stoull(value("-runs="));
-    else if (arg.rfind("-max_total_time=", 0) == 0) max_time = std::stod(value("-max_total_time="));
-    else if (arg.rfind("-timeout=", 0) == 0) timeout_s = static_cast<unsigned>(std::stoul(value("-timeout=")));
-    else if (arg.rfind("-max_len=", 0) == 0) max_len = std::stoull(value("-max_len="));
-    else if (arg.rfind("-artifact_prefix=", 0) == 0) prefix = value("-artifact_prefix=");
-    else if (arg.rfind("-dict=", 0) == 0) tokens = read_dictionary(value("-dict="));
+    if (arg.rfind("-seed=", 0) == 0) f.seed = std::stoull(value("-seed="));
+    else if (arg.rfind("-runs=", 0) == 0) f.runs = std::stoull(value("-runs="));
+    else if (arg.rfind("-max_total_time=", 0) == 0) f.max_time = std::stod(value("-max_total_time="));
+    else if (arg.rfind("-timeout=", 0) == 0) f.timeout_s = static_cast<unsigned>(std::stoul(value("-timeout=")));
+    else if (arg.rfind("-max_len=", 0) == 0) f.max_len = std::stoull(value("-max_len="));
+    else if (arg.rfind("-artifact_prefix=", 0) == 0) f.prefix = value("-artifact_prefix=");
+    else if (arg.rfind("-dict=", 0) == 0) f.tokens = read_dictionary(value("-dict="));
     else if (arg.rfind("-", 0) == 0) continue;  // a libFuzzer flag this driver does not know
     else if (fs::is_directory(arg)) {
       for (const auto& entry : fs::directory_iterator(arg))
-        if (entry.is_regular_file()) seeds.push_back(entry.path().string());
+        if (entry.is_regular_file()) f.seed_paths.push_back(entry.path().string());
     } else if (fs::is_regular_file(arg)) {
-      seeds.push_back(arg);
+      f.seed_paths.push_back(arg);
     }
   }
-  std::sort(seeds.begin(), seeds.end());  // directory order is not stable
-  for (auto& path : seeds) {
+  std::sort(f.seed_paths.begin(), f.seed_paths.end());  // directory order is not stable
+  return f;
+}
+
+std::vector<std::string> load_seeds(const std::vector<std::string>& paths) {
+  std::vector<std::string> seeds;
+  for (const auto& path : paths) {
     std::ifstream in(path, std::ios::binary);
-    path.assign(std::istreambuf_iterator<char>(in), {});
+    seeds.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
-  if (seeds.empty()) seeds.push_back("");
-  crash_path = prefix + "crash-" + std::to_string(seed);
-  timeout_path = prefix + "timeout-" + std::to_string(seed);
+  if (seeds.empty()) seeds.emplace_back();
+  return seeds;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Flags f = parse_flags(argc, argv);
+  const std::vector<std::string> seeds = load_seeds(f.seed_paths);
+  crash_path = f.prefix + "crash-" + std::to_string(f.seed);
+  timeout_path = f.prefix + "timeout-" + std::to_string(f.seed);
 #ifdef GEARPATCH_HAVE_ASAN
   __sanitizer_set_death_callback(on_sanitizer_death);
 #endif
   std::set_terminate(on_terminate);
   ::signal(SIGALRM, on_alarm);
 
-  for (const auto& s : seeds) run(s, timeout_s);
-  Random rng(seed);
+  for (const auto& s : seeds) run(s, f.timeout_s);
+  Random rng(f.seed);
   const auto start = std::chrono::steady_clock::now();
   std::uint64_t done = 0;
-  for (; runs == 0 || done < runs; ++done) {
-    if (max_time > 0 && done % 64 == 0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= max_time)
+  for (; f.runs == 0 || done < f.runs; ++done) {
+    if (f.max_time > 0 && done % 64 == 0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >= f.max_time)
       break;
-    if (runs == 0 && max_time <= 0) break;  // neither limit: the seeds only
+    if (f.runs == 0 && f.max_time <= 0) break;  // neither limit: the seeds only, as to rerun a finding
     std::string input = seeds[rng.below(seeds.size())];
-    for (std::size_t edits = 1 + rng.below(8); edits > 0; --edits) mutate(input, rng, tokens, seeds);
-    if (input.size() > max_len) input.resize(max_len);
-    run(input, timeout_s);
+    for (std::size_t edits = 1 + rng.below(8); edits > 0; --edits) mutate(input, rng, f.tokens, seeds);
+    if (input.size() > f.max_len) input.resize(f.max_len);
+    run(input, f.timeout_s);
   }
   std::fprintf(stderr, "mutation driver: %zu seeds, %llu mutated inputs, no finding\n", seeds.size(),
                static_cast<unsigned long long>(done));
