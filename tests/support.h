@@ -8,7 +8,23 @@
 #include "scene/scene_inputs.h"
 #include "solver/trajectory.h"
 
+#if defined(__SANITIZE_ADDRESS__)  // g++
+#define GEARPATCH_TESTS_SANITIZED 1
+#elif defined(__has_feature)       // clang
+#if __has_feature(address_sanitizer)
+#define GEARPATCH_TESTS_SANITIZED 1
+#endif
+#endif
+
 namespace gearpatch::testing {
+
+/// Factor for the tests' wall-clock bounds: the sanitizer build (CI's second
+/// build folder) checks every memory access and runs 2-3 times slower.
+#ifdef GEARPATCH_TESTS_SANITIZED
+inline constexpr double slowdown = 4.0;
+#else
+inline constexpr double slowdown = 1.0;
+#endif
 
 /// Path of a file in the source tree (scenes/bild5a.ini, ...).
 inline std::string source_path(const std::string& relative) {

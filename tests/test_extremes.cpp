@@ -272,7 +272,7 @@ TEST_CASE("a very stiff coupling settles in contact fast with the closed-form ac
   INFO("ω·T = " << omega * r.scene.duration << ", " << r.trajectory.events.size() << " events, "
                 << r.seconds << " s");
   CHECK(omega * r.scene.duration / (2 * std::numbers::pi) > 1e6);  // periods in the run
-  CHECK(r.seconds < 0.5);  // 3 s before the exact solver skipped what no guard can reach
+  CHECK(r.seconds < 0.5 * testing::slowdown);  // 3 s before the exact solver skipped what no guard can reach
   // the impacts end: the last event is early in the run
   REQUIRE(!r.trajectory.events.empty());
   CHECK(r.trajectory.events.back().t < 0.2 * r.scene.duration);
@@ -476,7 +476,7 @@ TEST_CASE("a stiff undamped rattle is refused within a second naming the event l
   INFO(why << " (" << seconds << " s)");
   CHECK_THAT(why, Catch::Contains("too many events") && Catch::Contains("limit of 5000000") &&
                       Catch::Contains("run.duration") && Catch::Contains("restitution < 1"));
-  CHECK(seconds < 1.0);
+  CHECK(seconds < 1.0 * testing::slowdown);
   // The command line names the scene file the refusal is about.
   std::string output;
   const std::string file = testing::source_path("scenes/extremes/rattle.ini");

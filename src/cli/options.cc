@@ -7,6 +7,7 @@
 
 #include "circuit/quality.h"
 #include "common/error.h"
+#include "common/option_error.h"
 
 namespace gearpatch::cli {
 
@@ -22,7 +23,7 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
     po::store(po::command_line_parser(args).options(all).positional(positional).run(), vm);
     po::notify(vm);
   } catch (const po::error& e) {
-    throw Error(std::string(e.what()) + " (see --help)");
+    throw Error(option_error_message(e) + " (see --help)");
   }
   if (vm.count("help")) {
     std::cout << usage << "\n\n" << options << "\n";

@@ -9,6 +9,7 @@
 #include "common/output_set.h"
 #include "common/process.h"
 #include "scene/scene.h"
+#include "spice/deck_reader.h"
 #include "verify/report.h"
 #include "verify/verify.h"
 
@@ -25,7 +26,10 @@ int run_verify(const std::vector<std::string>& args) {
                    verify::default_tolerance(circuit::Level::hardware)).c_str())
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
        "(as settings --autoscale) instead of the paper's a-priori maxima")
-      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one")
+      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one; "
+       "ngspice runs it as written, so a deck with .control blocks (which can run shell commands), "
+       "*# commands or .include/.lib is refused unless --allow-control")
+      ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("json", po::value<std::string>(), "write the report as JSON to FILE")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s (at least 0.001; inf: none)")
@@ -47,7 +51,10 @@ int run_verify(const std::vector<std::string>& args) {
   if (vm.count("tolerance")) o.tolerance = number_option(vm, "tolerance", 0, 1, true);
   o.autoscale = vm.count("autoscale") > 0;
   o.transient = chosen_quality(vm);
-  if (vm.count("deck")) o.deck_text = read_file(vm["deck"].as<std::string>());
+  if (vm.count("deck")) {
+    o.deck_text = read_file(vm["deck"].as<std::string>());
+    if (!vm.count("allow-control")) spice::refuse_deck_commands(*o.deck_text, vm["deck"].as<std::string>());
+  }
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
   if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());

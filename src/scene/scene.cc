@@ -13,6 +13,7 @@
 #include "common/error.h"
 #include "common/numbers.h"
 #include "common/utf8.h"
+#include "common/option_error.h"
 
 namespace gearpatch {
 namespace po = boost::program_options;
@@ -128,7 +129,7 @@ std::map<std::string, std::string> read_values(const std::string& text, const Ke
   try {
     parsed = po::parse_config_file(in, description, true);
   } catch (const po::error& e) {
-    throw Error(scene.source + ": " + e.what());
+    throw Error(scene.source + ": " + option_error_message(e));
   }
   std::map<std::string, std::string> values;
   for (const auto& option : parsed.options) {
