@@ -190,3 +190,13 @@ TEST_CASE("the CLI exits with status 2 on a bad scene and writes nothing", "[sce
   CHECK_THAT(output, Catch::Contains("bad.ini:5: gear.restitution = 2: must be in [0, 1]"));
   CHECK(!fs::exists(out));
 }
+
+TEST_CASE("a binary or very long bad line is quoted short and printable", "[scene]") {
+  const std::string junk = "\x01\x02\xff" + std::string(300, 'a');
+  const std::string message = error_of("[gear]\n" + junk + "\n");
+  CHECK_THAT(message, Catch::Contains("bad.ini:2: invalid line '\\x01\\x02\\xff") &&
+                          Catch::Contains("(and 243 more bytes)"));
+  CHECK(message.size() < 160);
+  // Printable UTF-8 stays as written.
+  CHECK_THAT(error_of("[gear]\nSteifigkeit \xC3\xA4\n"), Catch::Contains("invalid line 'Steifigkeit \xC3\xA4'"));
+}

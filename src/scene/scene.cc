@@ -109,11 +109,11 @@ void check_lines(const std::string& text, const std::string& source) {
     if (line.empty()) continue;
     const std::string where = source + ":" + std::to_string(number) + ": ";
     if (line.front() == '[') {
-      if (line.back() != ']') throw Error(where + "section header '" + line + "' lacks its closing ']'");
+      if (line.back() != ']') throw Error(where + "section header " + quoted_excerpt(line) + " lacks its closing ']'");
       if (significant(line.substr(1, line.size() - 2)).empty())
-        throw Error(where + "empty section header '" + line + "': name the section ([gear], [run], ...)");
+        throw Error(where + "empty section header " + quoted_excerpt(line) + ": name the section ([gear], [run], ...)");
     } else if (line.find('=') == std::string::npos || line.front() == '=') {
-      throw Error(where + "invalid line '" + line + "': expected key = value");
+      throw Error(where + "invalid line " + quoted_excerpt(line) + ": expected key = value");
     }
   }
 }
