@@ -92,6 +92,8 @@ TEST_CASE("settings takes --json FILE and -o FILE like the other commands; - is 
   // Two outputs cannot share stdout.
   CHECK(dir.run("simulate scenes/bild5b.ini --events -", output) == 2);
   CHECK_THAT(output, Catch::Contains("--events -: the same file as --out"));
+  CHECK(dir.run("verify scenes/bild5b.ini --json - --keep-deck -", output) == 2);
+  CHECK_THAT(output, Catch::Contains("--keep-deck -: the same file as --json") && !Catch::Contains("running ngspice"));
 }
 
 TEST_CASE("gearpatch --version prints the project's version", "[common][cli]") {

@@ -111,7 +111,7 @@ int run_bench(const std::vector<std::string>& args) {
   if (o.repetitions < 1 || o.ngspice_repetitions < 1) throw Error("--repeat and --ngspice-repeat must be >= 1");
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
-  const std::string table_to = main_output(vm, {"json", "markdown"});
+  const std::string table_to = main_output(vm, {"json", "plot", "markdown"});
   if (!table_to.empty()) outputs.add("--out", table_to);
   for (const char* option : {"json", "plot", "markdown"})
     if (vm.count(option)) outputs.add(std::string("--") + option, vm[option].as<std::string>());

@@ -102,13 +102,13 @@ int run_verify(const std::vector<std::string>& args) {
   }
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
-  const std::string report_to = main_output(vm, {"json", "keep-deck"});
+  const std::string report_to = main_output(vm, {"json", "plot", "keep-deck"});
   if (!report_to.empty()) outputs.add("--out", report_to);
   if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   if (vm.count("plot")) outputs.add("--plot", vm["plot"].as<std::string>());
   const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
-  if (vm.count("keep-deck")) {
-    check_output_path(vm["keep-deck"].as<std::string>(), "--keep-deck");
+  if (vm.count("keep-deck")) {  // written before the run, not staged: in the set to share no file
+    outputs.add("--keep-deck", vm["keep-deck"].as<std::string>());
     o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
   }
   const Scene scene = load_scene(file);
