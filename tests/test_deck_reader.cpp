@@ -151,6 +151,13 @@ TEST_CASE("verify --deck holds to the deck's header and says when a deck has non
                          !Catch::Contains("running ngspice"));
   CHECK(testing::run_command(verify + " --quality draft", output) == 2);
   CHECK_THAT(output, Catch::Contains("was written with quality=normal"));
+  // A deck with the paper's scaling overloads on hardware: the advice is a new deck, not an option it refuses.
+  const std::string paper_file = (dir / "gearpatch-deck-header-paper.cir").string();
+  REQUIRE(testing::run_command(binary + " netlist " + scene + " --level hardware -o " + paper_file, output) == 0);
+  CHECK(testing::run_command(binary + " verify " + scene + " --deck " + paper_file, output) == 1);
+  CHECK_THAT(output, Catch::Contains("overload") &&
+                         Catch::Contains("write the deck again with gearpatch netlist --autoscale"));
+  fs::remove(paper_file);
   // Without the header (a person's own deck) the options decide, and the report says so.
   std::string deck = read_file(deck_file);
   const auto at = deck.find("* gearpatch deck:");
