@@ -69,6 +69,7 @@ TEST_CASE("--tolerance is a percentage with its unit; a bare number is refused",
   // Written with its unit it is taken as a fraction of full scale: the report says 1 %.
   CHECK(dir.run("verify scenes/bild5a.ini --tolerance 1% --json -", output) == 0);
   CHECK_THAT(output, Catch::Contains("tolerance 1 % of full scale"));
+  CHECK(!fs::exists(dir.path / "-"));
 }
 
 TEST_CASE("settings takes --json FILE and -o FILE like the other commands; - is stdout", "[common][cli]") {
