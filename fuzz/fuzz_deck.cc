@@ -1,5 +1,6 @@
-// Fuzz target: the deck reader that finds the cards verify refuses. Besides
-// crashes, it checks that each finding names a line of the deck.
+// Fuzz target: the deck reader that finds the cards verify refuses, and the
+// header verify --deck holds to. Besides crashes, it checks that each finding
+// and a header read name a line of the deck.
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -19,6 +20,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!found.empty()) __builtin_trap();  // refused exactly when something was found
   } catch (const gearpatch::Error&) {
     if (found.empty()) __builtin_trap();
+  }
+  try {
+    const auto header = gearpatch::spice::read_deck_header(deck, "fuzz.cir");
+    if (header && (header->line == 0 || header->line > lines || !(header->beta > 0))) __builtin_trap();
+  } catch (const gearpatch::Error&) {
   }
   return 0;
 }

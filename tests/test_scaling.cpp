@@ -433,8 +433,8 @@ TEST_CASE("every numeric option must be finite and in range", "[scaling][cli]") 
   CHECK_THAT(refusal("settings " + scene + " --autoscale --headroom -1"), Catch::Contains("--headroom = -1"));
   CHECK_THAT(refusal("settings " + scene + " --comparator-offset nan"), Catch::Contains("--comparator-offset = nan"));
   // Refused before ngspice runs: an infinite tolerance would pass any circuit.
-  CHECK_THAT(refusal("verify " + scene + " --tolerance inf"),
-             Catch::Contains("--tolerance = inf: must be a finite number in (0, 1]"));
+  CHECK_THAT(refusal("verify " + scene + " --tolerance inf%"),
+             Catch::Contains("--tolerance inf%: must be a finite percentage in (0%, 100%]"));
 }
 
 TEST_CASE("gearpatch settings end to end", "[scaling]") {
@@ -452,7 +452,7 @@ TEST_CASE("gearpatch settings end to end", "[scaling]") {
   CHECK(run_binary("settings " + zero.string()) == 2);
   std::filesystem::remove(zero);
   const auto out = std::filesystem::temp_directory_path() / "gearpatch_settings_test.json";
-  REQUIRE(run_binary("settings " + scene + " --json --autoscale -o " + out.string()) == 0);
+  REQUIRE(run_binary("settings " + scene + " --autoscale --json " + out.string()) == 0);
   std::ifstream in(out);
   const auto j = nlohmann::json::parse(in);
   for (const auto& [signal, fraction] : j["peaks"].items()) {

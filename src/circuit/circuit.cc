@@ -19,6 +19,7 @@ class Builder {
     c_.level = level;
     c_.machine = patch.machine;
     c_.beta = patch.beta;
+    c_.autoscaled = patch.autoscaled;
     c_.duration = patch.duration;
   }
 

@@ -72,6 +72,7 @@ struct Circuit {
   std::vector<std::string> omitted;             ///< blocks left out, with the reason
   std::map<Signal, Probe> probes;              ///< one per compared signal
   double beta = 1;                              ///< machine time = β · real time
+  bool autoscaled = false;                      ///< scaled from the simulated peaks (--autoscale)
   double duration = 1;                          ///< real time, s
 
   /// Every node an op-amp drives in its linear range (the overload check);

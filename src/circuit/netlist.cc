@@ -5,18 +5,28 @@
 #include <map>
 #include <set>
 
+#include "circuit/quality.h"
 #include "common/error.h"
 #include "common/numbers.h"
+#include "spice/deck_reader.h"
 
 namespace gearpatch::circuit {
 namespace {
 
-std::string header(const Circuit& c, Level level, const MachineProfile& m) {
+/// The title, the line verify --deck reads back (spice/deck_reader.h), and the rest for a person.
+std::string header(const Circuit& c, Level level, const MachineProfile& m, const TransientControl& control) {
+  spice::DeckHeader made;
+  made.level = std::string(level_name(level));
+  made.scaling = c.autoscaled ? "autoscale" : "paper";
+  made.beta = c.beta;
+  made.unit_volts = m.unit_volts;
+  made.integrator_constant = m.integrator_constant;
+  made.quality = quality_name(control);
   std::string text = fmt::format(
-      "* gearpatch: analog computer program for scene '{}' (Klittich 1966, Bild 4), level {}\n"
+      "* gearpatch: analog computer program for scene '{}' (Klittich 1966, Bild 4), level {}\n{}"
       "* machine unit {} V, integrator constant k0 = {}/s, machine time = {} x real time\n"
       "* every amplifier inverts; node voltages are machine variables x {} V\n",
-      c.scene, level_name(level), format_number(m.unit_volts), format_number(m.integrator_constant),
+      c.scene, level_name(level), spice::format_deck_header(made), format_number(m.unit_volts), format_number(m.integrator_constant),
       format_number(c.beta), format_number(m.unit_volts));
   for (const auto& what : c.omitted) text += "* left out: " + what + "\n";
   return text;
@@ -127,7 +137,7 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
 std::string render_netlist(const Circuit& c, const TransientControl& control) {
   const Level level = c.level;
   const MachineProfile& m = c.machine;
-  return header(c, level, m) + parameters(c, level) + library(c, level, m) + program(c, m) +
+  return header(c, level, m, control) + parameters(c, level) + library(c, level, m) + program(c, m) +
          analysis(c, m, control);
 }
 

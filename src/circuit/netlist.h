@@ -14,6 +14,8 @@ struct TransientControl {
   double max_step_points = 500;  ///< tmax = machine run time / this
   double reltol = 1e-7;
   std::string method = "trap";   ///< trap or gear
+
+  bool operator==(const TransientControl&) const = default;
 };
 
 /// Renders the circuit as an ngspice deck at its level for its machine: the

@@ -33,6 +33,12 @@ const QualityPreset& quality_preset(std::string_view name) {
   throw Error(fmt::format("--quality {}: must be one of {}", name, names));
 }
 
+std::string quality_name(const TransientControl& control) {
+  for (const QualityPreset& p : quality_presets())
+    if (p.control == control) return p.name;
+  return "custom";
+}
+
 std::string_view default_quality() { return "normal"; }
 
 std::string preset_source() {

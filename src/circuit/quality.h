@@ -29,6 +29,9 @@ const std::vector<QualityPreset>& quality_presets();
 /// The preset of that name; throws Error listing the names otherwise.
 const QualityPreset& quality_preset(std::string_view name);
 
+/// The name of the preset with exactly these settings, or "custom".
+std::string quality_name(const TransientControl& control);
+
 /// The preset `verify` uses when none is given: "normal".
 std::string_view default_quality();
 

@@ -57,9 +57,8 @@ int run_bench(const std::vector<std::string>& args) {
                                              "preset",    "level"};
   po::options_description options("bench options");
   options.add_options()
-      ("json", po::value<std::string>(), "write every number, with the machine it ran on, as JSON to FILE")
       ("plot", po::value<std::string>(), "write the work-precision plot (error against time, log-log, "
-       "Pareto front marked) to FILE (.png or .svg, gnuplot)")
+       "Pareto front marked) to FILE (.png or .svg, gnuplot); a plot that cannot be made is a warning")
       ("markdown", po::value<std::string>(), "write the README section (tables, machine, command) to FILE")
       ("only", po::value<std::string>(), "measure only these comma-separated families: reference (exact and "
        "adaptive solvers), max-step, reltol, method, grid, preset, level (verify's default "
@@ -69,6 +68,7 @@ int run_bench(const std::vector<std::string>& args) {
       ("repeat", po::value<int>()->default_value(5), "reference solvers: timing repetitions (median taken)")
       ("ngspice-repeat", po::value<int>()->default_value(5), "ngspice runs per point (median time taken)")
       ("timeout", po::value<double>()->default_value(120), "ngspice wall-clock limit per run, s (at least 0.001; inf: none)");
+  add_output_options(options, "the tables", "every number, with the machine it ran on,");
   po::variables_map vm;
   if (!parse_arguments(
           args,
@@ -87,7 +87,10 @@ int run_bench(const std::vector<std::string>& args) {
           "knobs over all scenes with their Pareto front, the presets, and exact against\n"
           "adaptive at matched accuracy. Progress goes to stderr. Takes a few minutes on the\n"
           "7 example scenes.\n\n" + presets_text(),
-          options, vm, false))
+          options,
+          {"gearpatch bench scenes/bild5a.ini --only level --json bench.json",
+           "gearpatch bench scenes/bild5b.ini --only level --markdown bench.md --plot work-precision.svg"},
+          vm, false))
     return 0;
   bench::BenchOptions o;
   o.scene_files = vm.count("scene") ? vm["scene"].as<std::vector<std::string>>() : example_scene_files();
@@ -108,6 +111,8 @@ int run_bench(const std::vector<std::string>& args) {
   if (o.repetitions < 1 || o.ngspice_repetitions < 1) throw Error("--repeat and --ngspice-repeat must be >= 1");
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
+  const std::string table_to = main_output(vm, {"json", "plot", "markdown"});
+  if (!table_to.empty()) outputs.add("--out", table_to);
   for (const char* option : {"json", "plot", "markdown"})
     if (vm.count(option)) outputs.add(std::string("--") + option, vm[option].as<std::string>());
   const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
@@ -119,17 +124,23 @@ int run_bench(const std::vector<std::string>& args) {
   auto simulator = spice::make_batch_ngspice();
   const bench::BenchResult result = bench::run_bench(o, *simulator);
   const std::string table = bench::to_table(result);
-  try {
-    if (outputs.has("--json")) outputs.stage("--json", bench::to_json(result));
-    if (outputs.has("--plot")) outputs.stage("--plot", bench::plot_image(result, plot_as));
-    if (outputs.has("--markdown"))
-      outputs.stage("--markdown", bench::to_markdown(result, vm.count("plot") ? vm["plot"].as<std::string>() : ""));
-    outputs.commit();
-  } catch (...) {
-    std::fputs(table.c_str(), stdout);  // the measurements stand; their files do not land
-    throw;
+  std::string plot_warning;
+  if (outputs.has("--out")) outputs.stage("--out", table);
+  if (outputs.has("--json")) outputs.stage("--json", bench::to_json(result));
+  if (outputs.has("--plot")) {
+    try {  // the measurements stand without their picture
+      outputs.stage("--plot", bench::plot_image(result, plot_as));
+    } catch (const Error& e) {
+      plot_warning = e.what();
+    }
   }
-  std::fputs(table.c_str(), stdout);
+  if (outputs.has("--markdown"))
+    outputs.stage("--markdown", bench::to_markdown(result, vm.count("plot") && plot_warning.empty() ? vm["plot"].as<std::string>() : ""));
+  outputs.commit();
+  if (table_to.empty()) std::fputs(table.c_str(), stderr);
+  if (!plot_warning.empty())
+    std::fprintf(stderr, "gearpatch bench: warning: --plot %s: not written: %s\n", vm["plot"].as<std::string>().c_str(),
+                 plot_warning.c_str());
   return 0;
 }
 

@@ -23,10 +23,16 @@ void print_usage() {
       "commands:\n");
   for (const auto& c : gearpatch::cli::commands()) std::printf("  %-10s %s\n", c.name, c.summary);
   std::printf(
-      "\n  --help-scene  list every key a scene file may hold\n\n"
+      "\n  --help-scene  list every key a scene file may hold\n"
+      "  --version     print gearpatch's version\n\n"
+      "Outputs: -o/--out FILE for a command's main output, --json FILE for JSON;\n"
+      "- is stdout (with --json -, the main output goes to stderr).\n\n"
       "exit status: 0 success (verify: pass), 1 verify failed, 2 bad input or usage,\n"
       "3 the simulator failed (missing, aborted, timed out, NaN or cut-short output),\n"
-      "4 internal error (a bug: please report it).\n");
+      "4 internal error (a bug: please report it).\n\n"
+      "examples:\n"
+      "  gearpatch verify scenes/bild5b.ini --plot bild5b.svg\n"
+      "  gearpatch netlist scenes/bild5a.ini --level hardware -o bild5a.cir\n");
 }
 
 void print_scene_keys() {
@@ -43,6 +49,10 @@ int main(int argc, char** argv) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_usage();
     return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("gearpatch %s\n", GEARPATCH_VERSION);
+    return 0;
   }
   if (args[0] == "--help-scene") {
     print_scene_keys();

@@ -21,17 +21,22 @@ int run_netlist(const std::vector<std::string>& args) {
        "potentiometers as loaded dividers, 1N4148 diodes, DG419-class switches")
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
        "(as settings --autoscale) instead of the paper's a-priori maxima")
-      ("output,o", po::value<std::string>(), "deck file (default stdout)");
+      ("out,o", po::value<std::string>(), "write the deck to FILE (default stdout; - is stdout)");
   add_quality_option(options, "; written into the deck's .options and .tran lines");
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [--quality Q] [-o FILE.cir]\n\n"
+  if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [--autoscale] [--quality Q] [-o FILE.cir]\n\n"
                        "Writes the analog computer program of the scene (the paper's Bild 4) as an\n"
-                       "ngspice deck, with only the blocks the scene needs; says which were left out.",
-                       options, vm))
+                       "ngspice deck, with only the blocks the scene needs; says which were left out.\n"
+                       "Its header records level, scaling, β, machine and quality for verify --deck.",
+                       options,
+                       {"gearpatch netlist scenes/bild5a.ini -o bild5a.cir",
+                        "gearpatch netlist scenes/bild5a.ini --level hardware --autoscale -o bild5a.hw.cir"},
+                       vm))
     return 0;
   const std::string file = single_file(vm, "netlist");
   OutputSet outputs;  // the target checked now, before the work
-  outputs.add("--output", vm.count("output") ? vm["output"].as<std::string>() : "-");
+  const std::string deck_to = vm.count("out") ? vm["out"].as<std::string>() : "-";
+  outputs.add("--out", deck_to);
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
   const Scene scene = load_scene(file);
   PatchOptions patch_options;
@@ -41,10 +46,10 @@ int run_netlist(const std::vector<std::string>& args) {
   const circuit::Circuit c = circuit::build_circuit(make_patch(scene, patch_options), level);
   const circuit::TransientControl control = chosen_quality(vm);
   const std::string deck = circuit::render_netlist(c, control);
-  outputs.stage("--output", deck);
+  outputs.stage("--out", deck);
   outputs.commit();
-  if (!vm.count("output") || vm["output"].as<std::string>() == "-") return 0;
-  std::printf("%s: %zu amplifiers, %zu function blocks, level %s\n", vm["output"].as<std::string>().c_str(),
+  if (deck_to == "-") return 0;
+  std::printf("%s: %zu amplifiers, %zu function blocks, level %s\n", deck_to.c_str(),
               c.amplifiers.size(), c.blocks.size(), std::string(level_name(level)).c_str());
   for (const auto& what : c.omitted) std::printf("  left out: %s\n", what.c_str());
   return 0;

@@ -1,6 +1,7 @@
 #include "cli/options.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <fmt/format.h>
 #include <iostream>
 #include <limits>
@@ -12,7 +13,8 @@
 namespace gearpatch::cli {
 
 bool parse_arguments(const std::vector<std::string>& args, const std::string& usage,
-                     po::options_description options, po::variables_map& vm, bool scene_required) {
+                     po::options_description options, const std::vector<std::string>& examples,
+                     po::variables_map& vm, bool scene_required) {
   options.add_options()("help,h", "show this help");
   po::options_description all;
   all.add(options);
@@ -26,7 +28,8 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
     throw Error(option_error_message(e) + " (see --help)");
   }
   if (vm.count("help")) {
-    std::cout << usage << "\n\n" << options << "\n";
+    std::cout << usage << "\n\n" << options << "\nexamples:\n";
+    for (const std::string& example : examples) std::cout << "  " << example << "\n";
     return false;
   }
   if (scene_required && !vm.count("scene")) throw Error("no SCENE given (see --help)");
@@ -49,6 +52,36 @@ double number_option(const po::variables_map& vm, const std::string& name, doubl
           ? fmt::format("{} {:g}", above_least ? ">" : ">=", least)
           : fmt::format("in {}{:g}, {:g}]", above_least ? "(" : "[", least, most);
   throw Error(fmt::format("--{} = {:g}: must be a finite number {}", name, value, range));
+}
+
+void add_output_options(po::options_description& options, const std::string& main, const std::string& json) {
+  options.add_options()
+      ("out,o", po::value<std::string>(), ("write " + main + " to FILE (default stdout; - is stdout)").c_str())
+      ("json", po::value<std::string>(), ("write " + json + " as JSON to FILE (- is stdout; "
+                                          "the main output then goes to stderr)").c_str());
+}
+
+std::string main_output(const po::variables_map& vm, const std::vector<std::string>& others) {
+  if (vm.count("out")) return vm["out"].as<std::string>();
+  for (const std::string& other : others)
+    if (vm.count(other) && vm[other].as<std::string>() == "-") return "";
+  return "-";
+}
+
+double percent_option(const po::variables_map& vm, const std::string& name, double most_percent) {
+  const std::string text = vm[name].as<std::string>();
+  const std::string how = fmt::format("write it as a percentage with its unit, e.g. --{} 0.5%", name);
+  if (text.empty() || text.back() != '%')
+    throw Error(fmt::format("--{} {}: the unit is missing; {} (a fraction of full scale, up to {:g}%)", name,
+                            text, how, most_percent));
+  const std::string number = text.substr(0, text.size() - 1);
+  char* end = nullptr;
+  const double percent = std::strtod(number.c_str(), &end);
+  if (number.empty() || end != number.c_str() + number.size())
+    throw Error(fmt::format("--{} {}: not a number; {}", name, text, how));
+  if (!(std::isfinite(percent) && percent > 0 && percent <= most_percent))
+    throw Error(fmt::format("--{} {}: must be a finite percentage in (0%, {:g}%]", name, text, most_percent));
+  return percent / 100;
 }
 
 void add_quality_option(po::options_description& options, const std::string& note) {

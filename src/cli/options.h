@@ -10,11 +10,26 @@ namespace gearpatch::cli {
 namespace po = boost::program_options;
 
 /// Parses a subcommand's arguments: the positional SCENE plus `options`;
-/// prints `usage` and the options for --help (returning false: nothing to
-/// do). Usage errors become gearpatch::Error, i.e. exit status 2.
+/// prints `usage`, the options and an "examples:" block of `examples` (whole
+/// command lines, run from the source folder) for --help (returning false:
+/// nothing to do). Usage errors become gearpatch::Error, i.e. exit status 2.
 bool parse_arguments(const std::vector<std::string>& args, const std::string& usage,
-                     po::options_description options, po::variables_map& vm,
-                     bool scene_required = true);
+                     po::options_description options, const std::vector<std::string>& examples,
+                     po::variables_map& vm, bool scene_required = true);
+
+/// Adds the outputs every command takes alike: -o/--out FILE for its main
+/// output (`main`, default stdout) and --json FILE; "-" is stdout for both.
+void add_output_options(po::options_description& options, const std::string& main, const std::string& json);
+
+/// Where the main output goes: --out, else stdout, unless one of `others`
+/// (--json, ...) takes stdout ("-"); then the main output goes to stderr, so
+/// stdout holds only that. Returns "-" for stdout, "" for stderr, or the file.
+std::string main_output(const po::variables_map& vm, const std::vector<std::string>& others = {"json"});
+
+/// A fraction written as a percentage, "0.5%" -> 0.005, refused (Error,
+/// exit 2) unless it ends in % and lies in (0 %, `most_percent` %]: a bare
+/// number could mean either, and 5 meant 500 % once.
+double percent_option(const po::variables_map& vm, const std::string& name, double most_percent);
 
 /// The one positional file a command takes; Error "<command> takes one <what>" otherwise.
 std::string single_file(const po::variables_map& vm, const std::string& command,

@@ -12,18 +12,20 @@ namespace gearpatch::cli {
 
 int run_reduce(const std::vector<std::string>& args) {
   po::options_description options("reduce options");
-  options.add_options()("json", po::value<std::string>(), "write the result as JSON to FILE");
+  add_output_options(options, "the table", "the result");
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch reduce STAGES [--json FILE]\n\n"
+  if (!parse_arguments(args, "usage: gearpatch reduce STAGES [--json FILE] [-o FILE]\n\n"
                        "Section 2 of the paper: n elastic members in series (an INI file of\n"
                        "repeated [stage] sections with stiffness = c_i and damping = d_i, referred\n"
                        "to the primary shaft) become one coupling: 1/c = sum 1/c_i, 1/d = sum 1/d_i.\n"
                        "Exact when every d_i/c_i is equal; otherwise it says how far the frequency\n"
                        "responses of the n members and of the one coupling part.",
-                       options, vm))
+                       options, {"gearpatch reduce scenes/stages/drive_train.ini --json drive_train.json"}, vm))
     return 0;
   const std::string file = single_file(vm, "reduce", "STAGES");
   OutputSet outputs;  // the target checked now, before the work
+  const std::string table_to = main_output(vm);
+  if (!table_to.empty()) outputs.add("--out", table_to);
   if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   const auto stages = load_stages(file);
   const StageReduction r = reduce_stages(stages);
@@ -38,15 +40,16 @@ int run_reduce(const std::vector<std::string>& args) {
                                  "frequency responses differ by up to {:.3g} % (at {:.4g} rad/s)\n",
                                  100 * r.worst_response_error, r.frequency_of_worst);
   table += fmt::format("scene keys: [gear] stiffness = {}, damping = {}\n", r.stiffness, r.damping);
-  std::fputs(table.c_str(), stdout);
+  if (table_to.empty()) std::fputs(table.c_str(), stderr);
+  if (outputs.has("--out")) outputs.stage("--out", table);
   if (vm.count("json")) {
     nlohmann::json j = {{"stiffness", r.stiffness}, {"damping", r.damping}, {"exact", r.exact},
                         {"worst_response_error", r.worst_response_error},
                         {"frequency_of_worst", r.frequency_of_worst}};
     // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
     outputs.stage("--json", j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-    outputs.commit();
   }
+  outputs.commit();
   return 0;
 }
 

@@ -12,8 +12,6 @@ namespace gearpatch::cli {
 int run_settings(const std::vector<std::string>& args) {
   po::options_description options("settings options");
   options.add_options()
-      ("json", "write JSON instead of the table")
-      ("out,o", po::value<std::string>(), "write to FILE instead of stdout")
       ("beta", po::value<double>(), "time scale β (machine time = β·real time), 1e-6 … 1e6; default: the "
        "scene's machine.time_scale, else chosen automatically")
       ("autoscale", "rescale every maximum from the simulated peak plus --headroom")
@@ -24,6 +22,7 @@ int run_settings(const std::vector<std::string>& args) {
       ("comparator-offset", po::value<double>()->default_value(5e-3, "0.005"),
        "comparator offsets δ1, δ2 in machine units, (0, 0.5]: above the comparators' hysteresis and the "
        "op-amps' zero errors (the ideal netlist uses 1e-5)");
+  add_output_options(options, "the table", "the settings");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
                        "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"
@@ -31,11 +30,16 @@ int run_settings(const std::vector<std::string>& args) {
                        "load connected, what was left out, and the simulated peak of every signal.\n"
                        "Overloads are warnings (exit 0); an unreachable coefficient is an error (2);\n"
                        "an internal error exits 4.",
-                       options, vm))
+                       options,
+                       {"gearpatch settings scenes/bild5b.ini",
+                        "gearpatch settings scenes/bild5b.ini --autoscale --json bild5b.settings.json"},
+                       vm))
     return 0;
   const std::string file = single_file(vm, "settings");
   OutputSet outputs;  // the target checked now, before the run
-  outputs.add("--out", vm.count("out") ? vm["out"].as<std::string>() : "-");
+  const std::string table_to = main_output(vm);
+  if (!table_to.empty()) outputs.add("--out", table_to);
+  if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
   o.check_peaks = vm.count("no-check") == 0;
@@ -45,10 +49,12 @@ int run_settings(const std::vector<std::string>& args) {
   o.comparator_offset = number_option(vm, "comparator-offset", 0, 0.5, true);  // in MU, below half the unit
   if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
   const Patch patch = make_patch(load_scene(file), o);
-  const std::string text = vm.count("json") ? to_json(patch) : to_table(patch);
-  outputs.stage("--out", text);
+  const std::string table = to_table(patch);
+  if (outputs.has("--out")) outputs.stage("--out", table);
+  if (outputs.has("--json")) outputs.stage("--json", to_json(patch));
   outputs.commit();
-  if (vm.count("json") || vm.count("out"))  // the table already lists them
+  if (table_to.empty()) std::fputs(table.c_str(), stderr);
+  if (table_to != "-")  // the table on the terminal lists them
     for (const auto& w : patch.warnings) std::fprintf(stderr, "gearpatch settings: warning: %s\n", w.c_str());
   return 0;
 }

@@ -20,12 +20,16 @@ int run_simulate(const std::vector<std::string>& args) {
        "Dormand-Prince 5(4) with dense output, error set by --rtol")
       ("rtol", po::value<double>()->default_value(1e-10), "tolerance of the adaptive solver, 1e-14 … 0.1")
       ("dt", po::value<double>(), "output step in s, > 0 (default: scene's run.output_step or duration/2000)")
-      ("out,o", po::value<std::string>(), "CSV file t,omega_p,omega_s,dphi,m0 (SI units; default stdout)")
+      ("out,o", po::value<std::string>(), "write the CSV t,omega_p,omega_s,dphi,m0 (SI units) to FILE "
+       "(default stdout; - is stdout)")
       ("events", po::value<std::string>(), "CSV file of mode changes: t,kind,omega_p,omega_s,dphi,mode");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch simulate SCENE [options]\n\n"
                        "Runs the reference model of the paper's equations (6.1)-(6.10) and\n"
-                       "writes the trajectory in physical units and real time.", options, vm))
+                       "writes the trajectory in physical units and real time.", options,
+                       {"gearpatch simulate scenes/bild5b.ini -o bild5b.csv",
+                        "gearpatch simulate scenes/bild6a.ini --dt 1e-4 --events bild6a.events.csv -o -"},
+                       vm))
     return 0;
   const std::string file = single_file(vm, "simulate");
   OutputSet outputs;  // every target checked now, before the run

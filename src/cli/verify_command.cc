@@ -1,6 +1,7 @@
 #include <cstdio>
 #include <fmt/format.h>
 
+#include "circuit/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
 #include "common/atomic_file.h"
@@ -14,54 +15,100 @@
 #include "verify/verify.h"
 
 namespace gearpatch::cli {
+namespace {
+
+/// Takes level, scaling and quality from a --deck's gearpatch header where
+/// the options leave them open; an option that contradicts it is an Error:
+/// the deck's numbers mean nothing under another level or scaling.
+void hold_to_deck(const po::variables_map& vm, const spice::DeckHeader& h, const std::string& path,
+                  verify::VerifyOptions& o) {
+  const auto refuse = [&](const std::string& option, const std::string& key, const std::string& value) {
+    throw Error(fmt::format("{}: --deck {} was written with {}={} (line {}); drop {} or write the deck "
+                            "again with gearpatch netlist",
+                            option, path, key, value, h.line, option.substr(0, option.find(' '))));
+  };
+  if (!vm["level"].defaulted() && vm["level"].as<std::string>() != h.level)
+    refuse("--level " + vm["level"].as<std::string>(), "level", h.level);
+  o.level = circuit::parse_level(h.level);
+  if (o.autoscale && h.scaling != "autoscale") refuse("--autoscale", "scaling", h.scaling);
+  o.autoscale = h.scaling == "autoscale";
+  if (h.quality == "custom") return;  // edited .tran settings: the options' grid it is
+  if (!vm["quality"].defaulted() && vm["quality"].as<std::string>() != h.quality)
+    refuse("--quality " + vm["quality"].as<std::string>(), "quality", h.quality);
+  o.transient = circuit::quality_preset(h.quality).control;
+}
+
+/// The --plot image, or a warning: a plot that cannot be made never costs the verdict.
+void stage_plot(OutputSet& outputs, const verify::VerifyResult& result, const std::string& format,
+                std::vector<std::string>& warnings) {
+  try {
+    outputs.stage("--plot", verify::plot_image(result, format));
+  } catch (const Error& e) {
+    warnings.push_back(fmt::format("--plot {}: not written: {}", outputs.path("--plot"), e.what()));
+  }
+}
+
+}  // namespace
 
 int run_verify(const std::vector<std::string>& args) {
   po::options_description options("verify options");
   options.add_options()
-      ("level", po::value<std::string>()->default_value("ideal"), "ideal or hardware (see netlist --help)")
-      ("tolerance", po::value<double>(),
-       fmt::format("pass if every signal's maximum error is within this fraction of its full scale, (0, 1], "
-                   "and impact times within this fraction of the run (default {} ideal, {} hardware)",
-                   verify::default_tolerance(circuit::Level::ideal),
-                   verify::default_tolerance(circuit::Level::hardware)).c_str())
+      ("level", po::value<std::string>()->default_value("ideal"), "ideal or hardware (see netlist --help); "
+       "with --deck, the deck's own level")
+      ("tolerance", po::value<std::string>(),
+       fmt::format("pass if every signal's maximum error is within this percentage of its full scale and "
+                   "impact times within this percentage of the run, written with its unit: 0.5% (a bare "
+                   "number is refused), at most 100% (default {:g}% ideal, {:g}% hardware)",
+                   100 * verify::default_tolerance(circuit::Level::ideal),
+                   100 * verify::default_tolerance(circuit::Level::hardware)).c_str())
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
-       "(as settings --autoscale) instead of the paper's a-priori maxima")
-      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one; "
+       "(as settings --autoscale) instead of the paper's a-priori maxima; with --deck, the deck's own scaling")
+      ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one. "
+       "A deck written by gearpatch netlist says its level, scaling and quality in its header, and verify "
+       "holds to it; a deck without that header is read back with the options' level and scaling. "
        "ngspice runs it as written, so a deck with .control blocks (which can run shell commands), "
        "*# commands or .include/.lib is refused unless --allow-control")
       ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
-      ("json", po::value<std::string>(), "write the report as JSON to FILE")
-      ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot)")
+      ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
+       "a plot that cannot be made is a warning, the verdict stands")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s (at least 0.001; inf: none)")
       ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE (written before the "
        "run and kept whatever its outcome, to rerun it by hand)");
-  add_quality_option(options, "; ignored with --deck");
+  add_output_options(options, "the report", "the report");
+  add_quality_option(options, "; with --deck, the deck's own");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
                        "physical units and compares it with the reference model. Exit status 0:\n"
                        "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
                        "ends short of the run (the deck is kept), 4: internal error.",
-                       options, vm))
+                       options,
+                       {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
+                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%"},
+                       vm))
     return 0;
   const std::string file = single_file(vm, "verify");
   verify::VerifyOptions o;
   o.level = circuit::parse_level(vm["level"].as<std::string>());
-  // Beyond the full scale a tolerance passes any circuit.
-  if (vm.count("tolerance")) o.tolerance = number_option(vm, "tolerance", 0, 1, true);
+  if (vm.count("tolerance")) o.tolerance = percent_option(vm, "tolerance", 100);
   o.autoscale = vm.count("autoscale") > 0;
   o.transient = chosen_quality(vm);
   if (vm.count("deck")) {
-    o.deck_text = read_file(vm["deck"].as<std::string>());
-    if (!vm.count("allow-control")) spice::refuse_deck_commands(*o.deck_text, vm["deck"].as<std::string>());
+    const std::string path = vm["deck"].as<std::string>();
+    o.deck_text = read_file(path);
+    if (!vm.count("allow-control")) spice::refuse_deck_commands(*o.deck_text, path);
+    o.deck_header = spice::read_deck_header(*o.deck_text, path);
+    if (o.deck_header) hold_to_deck(vm, *o.deck_header, path, o);
   }
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
+  const std::string report_to = main_output(vm, {"json", "plot", "keep-deck"});
+  if (!report_to.empty()) outputs.add("--out", report_to);
   if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   if (vm.count("plot")) outputs.add("--plot", vm["plot"].as<std::string>());
   const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
-  if (vm.count("keep-deck")) {
-    check_output_path(vm["keep-deck"].as<std::string>(), "--keep-deck");
+  if (vm.count("keep-deck")) {  // written before the run, not staged: in the set to share no file
+    outputs.add("--keep-deck", vm["keep-deck"].as<std::string>());
     o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
   }
   const Scene scene = load_scene(file);
@@ -70,15 +117,13 @@ int run_verify(const std::vector<std::string>& args) {
   auto simulator = spice::make_batch_ngspice();
   const verify::VerifyResult result = verify::verify(scene, o, *simulator);
   const std::string table = verify::to_table(result);
-  try {
-    if (outputs.has("--json")) outputs.stage("--json", verify::to_json(result));
-    if (outputs.has("--plot")) outputs.stage("--plot", verify::plot_image(result, plot_as));
-    outputs.commit();
-  } catch (...) {
-    std::fputs(table.c_str(), stdout);  // the verdict stands; its files do not land
-    throw;
-  }
-  std::fputs(table.c_str(), stdout);
+  std::vector<std::string> warnings;
+  if (outputs.has("--out")) outputs.stage("--out", table);
+  if (outputs.has("--json")) outputs.stage("--json", verify::to_json(result));
+  if (outputs.has("--plot")) stage_plot(outputs, result, plot_as, warnings);
+  outputs.commit();
+  if (report_to.empty()) std::fputs(table.c_str(), stderr);
+  for (const std::string& w : warnings) std::fprintf(stderr, "gearpatch verify: warning: %s\n", w.c_str());
   return result.passed ? 0 : 1;
 }
 

@@ -13,7 +13,8 @@ void OutputSet::add(const std::string& option, const std::string& path) {
   const std::string target = check_output_path(path, option);
   std::error_code ec;
   const auto same = [&](const std::string& other) {
-    return target != "-" && fs::weakly_canonical(target, ec) == fs::weakly_canonical(other, ec);
+    if (target == "-" || other == "-") return target == other;  // one stream, one output
+    return fs::weakly_canonical(target, ec) == fs::weakly_canonical(other, ec);
   };
   for (const auto& [other, other_target] : targets_)
     if (same(other_target))

@@ -16,7 +16,7 @@ class OutputSet {
  public:
   /// Checks `path` as the target of `option` now (common/atomic_file.h):
   /// Error naming both if it cannot be written, or if another option of the
-  /// set already writes the same file. "-" is stdout.
+  /// set already writes the same file, or stdout ("-") too.
   void add(const std::string& option, const std::string& path);
 
   bool has(const std::string& option) const { return paths_.count(option) != 0; }

@@ -174,6 +174,7 @@ void check_and_autoscale(const GearParameters& p, const PatchOptions& o, const P
   if (o.autoscale) {
     if (!(o.headroom >= 0 && o.headroom < 1)) throw Error("the headroom must be in [0, 1)");
     patch.maxima = autoscaled(patch.a_priori, x, o.headroom, patch.notes);
+    patch.autoscaled = true;
     patch.notes.push_back(fmt::format(
         "autoscale: every maximum is its simulated peak plus {:g} % headroom, so every scaled "
         "signal peaks at {:.1f} % of its scale (the a-priori estimate is kept in a_priori)",

@@ -57,6 +57,7 @@ struct Patch {
   double beta = 1, k0 = 1, unit_volts = 10;
   Maxima maxima;       ///< the maxima the settings use
   Maxima a_priori;     ///< section 6's estimate (equal to maxima without autoscale)
+  bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale), not section 6's
   std::vector<Potentiometer> potentiometers;
   std::optional<double> dead_zone;  ///< a = ε/Δφm, MU; empty without backlash
   double delta1 = 0, delta2 = 0;    ///< comparator offsets, MU (0 when unused)

@@ -1,6 +1,10 @@
 #include "spice/deck_reader.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <fmt/format.h>
+#include <map>
 
 #include "common/error.h"
 
@@ -65,6 +69,78 @@ void refuse_deck_commands(std::string_view deck, const std::string& path) {
   const DeckCommand& c = commands.front();
   throw Error(path + ":" + std::to_string(c.line) + ": " + c.card + ": " + c.what +
               "; ngspice would run the deck as written (pass --allow-control if you trust it)");
+}
+
+namespace {
+
+constexpr std::string_view kHeaderStart = "* gearpatch deck:";
+
+/// The key=value words after the header's start; a word without '=' is kept with an empty value.
+std::map<std::string, std::string> header_words(std::string_view text) {
+  std::map<std::string, std::string> words;
+  while (!(text = trim_front(text)).empty()) {
+    std::size_t end = 0;
+    while (end < text.size() && !std::isspace(static_cast<unsigned char>(text[end]))) ++end;
+    const std::string_view word = text.substr(0, end);
+    const std::size_t equals = word.find('=');
+    words[std::string(word.substr(0, equals))] =
+        equals == std::string_view::npos ? "" : std::string(word.substr(equals + 1));
+    text.remove_prefix(end);
+  }
+  return words;
+}
+
+}  // namespace
+
+std::string format_deck_header(const DeckHeader& h) {
+  return fmt::format("{} level={} scaling={} beta={} unit={} k0={} quality={}\n", kHeaderStart, h.level,
+                     h.scaling, h.beta, h.unit_volts, h.integrator_constant, h.quality);
+}
+
+std::optional<DeckHeader> read_deck_header(std::string_view deck, const std::string& path) {
+  std::size_t number = 0;
+  std::string_view raw;
+  while (!deck.empty()) {
+    const std::size_t end = deck.find('\n');
+    raw = deck.substr(0, end);
+    deck.remove_prefix(end == std::string_view::npos ? deck.size() : end + 1);
+    ++number;
+    if (raw.substr(0, kHeaderStart.size()) == kHeaderStart) break;
+    raw = {};
+  }
+  if (raw.empty()) return std::nullopt;
+  if (raw.back() == '\r') raw.remove_suffix(1);
+  auto words = header_words(raw.substr(kHeaderStart.size()));
+  const auto fail = [&](const std::string& key, const std::string& problem) -> Error {
+    return Error(fmt::format("{}:{}: {}: {} (the deck's gearpatch header)", path, number, key, problem));
+  };
+  const auto word = [&](const std::string& key) {
+    const auto found = words.find(key);
+    if (found == words.end() || found->second.empty()) throw fail(key, "missing");
+    return shown(found->second);
+  };
+  const auto one_of = [&](const std::string& key, std::string_view a, std::string_view b) {
+    const std::string value = word(key);
+    if (value != a && value != b) throw fail(key, fmt::format("{}: must be {} or {}", value, a, b));
+    return value;
+  };
+  const auto positive = [&](const std::string& key) {
+    const std::string value = word(key);
+    char* end = nullptr;
+    const double x = std::strtod(value.c_str(), &end);
+    if (end != value.c_str() + value.size() || !std::isfinite(x) || !(x > 0))
+      throw fail(key, value + ": must be a finite number > 0");
+    return x;
+  };
+  DeckHeader h;
+  h.level = one_of("level", "ideal", "hardware");
+  h.scaling = one_of("scaling", "paper", "autoscale");
+  h.beta = positive("beta");
+  h.unit_volts = positive("unit");
+  h.integrator_constant = positive("k0");
+  h.quality = word("quality");
+  h.line = number;
+  return h;
 }
 
 }  // namespace gearpatch::spice

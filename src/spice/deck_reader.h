@@ -1,4 +1,5 @@
 #pragma once
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,5 +25,27 @@ std::vector<DeckCommand> find_deck_commands(std::string_view deck);
 /// Throws gearpatch::Error (input) naming `path`, the line and the card if
 /// the deck holds any of the cards above: verify runs a deck as written.
 void refuse_deck_commands(std::string_view deck, const std::string& path);
+
+/// How a deck that gearpatch wrote was made, from its header line, a comment
+/// to ngspice: `* gearpatch deck: level=hardware scaling=paper beta=1 unit=10
+/// k0=1 quality=normal`. verify --deck holds its options to it, since the
+/// deck's numbers mean nothing under another level or scaling.
+struct DeckHeader {
+  std::string level = "ideal";    ///< ideal or hardware
+  std::string scaling = "paper";  ///< paper (section 6's a-priori maxima) or autoscale
+  double beta = 1;                ///< machine time = β · real time
+  double unit_volts = 10;         ///< volts per machine unit
+  double integrator_constant = 1; ///< k0, 1/s
+  std::string quality = "normal"; ///< the --quality preset, or custom
+  std::size_t line = 0;           ///< 1-based line of the header in the deck read
+};
+
+/// The header line, newline included.
+std::string format_deck_header(const DeckHeader& header);
+
+/// The first header line of a deck, or none for a deck without one (a
+/// person's own). Throws Error "path:line: key: problem" for a header line
+/// that lacks a key or holds a bad value.
+std::optional<DeckHeader> read_deck_header(std::string_view deck, const std::string& path);
 
 }  // namespace gearpatch::spice

@@ -15,11 +15,14 @@ void overloads(const VerifyResult& r, std::vector<std::string>& out) {
   const auto worst = std::max_element(r.overloads.begin(), r.overloads.end(), [](const auto& a, const auto& b) {
     return std::abs(a.value) < std::abs(b.value);
   });
+  // A --deck with a header keeps its scaling: the fix is a new deck, not an option.
+  const char* autoscale = r.deck_scaling == "header" ? "write the deck again with gearpatch netlist --autoscale"
+                                                     : "run with --autoscale";
   out.push_back(fmt::format(
       "overload: {} amplifier output(s) leave 1 MU, worst {} at {:.4g} MU ({:.2g} % over): the scaling "
-      "leaves no headroom there; run with --autoscale (maxima = simulated peaks + 10 %) or raise the "
+      "leaves no headroom there; {} (maxima = simulated peaks + 10 %) or raise the "
       "maxima in the scene's [maxima]",
-      r.overloads.size(), worst->node, worst->value, 100 * (std::abs(worst->value) - 1)));
+      r.overloads.size(), worst->node, worst->value, 100 * (std::abs(worst->value) - 1), autoscale));
 }
 
 /// The damping switch (blocks 7/9) closes only once |X'| > δ1 and opens when

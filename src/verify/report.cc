@@ -13,6 +13,12 @@ namespace gearpatch::verify {
 std::string to_table(const VerifyResult& r) {
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {}\n\n",
                               r.scene, level_name(r.level), 100 * r.tolerance, r.beta);
+  if (r.deck_scaling != "generated")
+    t += fmt::format("deck: {}; read back as level {}, {} scaling\n\n",
+                     r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
+                                                : "--deck without a gearpatch header, level and scaling "
+                                                  "from the options (not checked against the deck)",
+                     level_name(r.level), r.autoscaled ? "autoscale" : "paper");
   t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12}  {}\n", "signal", "full scale", "unit",
                    "max error %", "rms error %", "worst at t [s]");
   for (const auto& e : r.comparison.signals)
@@ -53,6 +59,8 @@ std::string to_json(const VerifyResult& r) {
   j["tolerance"] = r.tolerance;
   j["passed"] = r.passed;
   j["beta"] = r.beta;
+  j["deck_scaling"] = r.deck_scaling;  // generated, header or options
+  j["scaling"] = r.autoscaled ? "autoscale" : "paper";
   j["ngspice_seconds"] = r.ngspice_seconds;
   for (const auto& e : r.comparison.signals)
     j["signals"][to_string(e.signal)] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},

@@ -20,6 +20,22 @@ double default_tolerance(circuit::Level level) {
 
 namespace {
 
+/// Throws Error if the deck's header says it was made for another β or
+/// machine than the scene's circuit: read back with these, every signal
+/// would be off by the ratio.
+void check_deck_header(const spice::DeckHeader& h, const circuit::Circuit& c) {
+  const auto differs = [](double a, double b) { return std::abs(a - b) > 1e-12 * std::abs(b); };
+  const auto refuse = [&](const char* key, double deck, double scene) {
+    throw Error(fmt::format("--deck line {}: {}={:g}, but the scene gives {:g}: the deck was written for "
+                            "another scene or machine; write it again with gearpatch netlist",
+                            h.line, key, deck, scene));
+  };
+  if (differs(h.beta, c.beta)) refuse("beta", h.beta, c.beta);
+  if (differs(h.unit_volts, c.machine.unit_volts)) refuse("unit", h.unit_volts, c.machine.unit_volts);
+  if (differs(h.integrator_constant, c.machine.integrator_constant))
+    refuse("k0", h.integrator_constant, c.machine.integrator_constant);
+}
+
 void judge(VerifyResult& r) {
   for (const SignalError& e : r.comparison.signals)
     if (e.max_error > r.tolerance)
@@ -65,6 +81,9 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.warnings = patch.warnings;
   const circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
   r.beta = circuit.beta;
+  r.autoscaled = circuit.autoscaled;
+  if (options.deck_header) check_deck_header(*options.deck_header, circuit);
+  if (options.deck_text) r.deck_scaling = options.deck_header ? "header" : "options";
   const std::string deck = options.deck_text.value_or(
       circuit::render_netlist(circuit, options.transient));
 

@@ -6,6 +6,7 @@
 #include "circuit/block_library.h"
 #include "circuit/netlist.h"
 #include "solver/trajectory.h"
+#include "spice/deck_reader.h"
 #include "spice/simulator.h"
 #include "verify/compare.h"
 
@@ -20,6 +21,9 @@ struct VerifyOptions {
   circuit::Level level = circuit::Level::ideal;
   std::optional<double> tolerance;      ///< fraction of full scale; default per level
   std::optional<std::string> deck_text; ///< a deck a person edited, instead of the generated one
+  /// deck_text's gearpatch header, if it has one: level, autoscale and
+  /// transient above must agree with it; its β and machine are checked here.
+  std::optional<spice::DeckHeader> deck_header;
   bool autoscale = false;               ///< scale from the simulated peaks + 10 % (settings --autoscale)
   circuit::TransientControl transient;
   spice::RunLimits limits;
@@ -42,6 +46,11 @@ struct VerifyResult {
   double beta = 1;
   double jump_window = 0;  ///< s around each jump of a signal left out of its errors
   double ngspice_seconds = 0;
+  /// Whose scaling the deck was read back with: "generated" (verify's own
+  /// deck), "header" (a --deck's gearpatch header) or "options" (a --deck
+  /// without one: level and scaling as the options say, unchecked).
+  std::string deck_scaling = "generated";
+  bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale)
   Trajectory reference;
   CircuitTrace circuit;
 };

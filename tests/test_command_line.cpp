@@ -1,0 +1,127 @@
+// The command line alike in every command: --tolerance with its unit, -o/--out
+// and --json FILE with - for stdout, --version, and the examples every --help
+// ends with (run here as written).
+#include <catch2/catch.hpp>
+
+#include <stdlib.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "common/atomic_file.h"
+#include "support.h"
+
+namespace fs = std::filesystem;
+using namespace gearpatch;
+
+namespace {
+
+const std::string kBinary = GEARPATCH_BINARY;
+
+/// A fresh folder that sees the example scenes as scenes/, removed afterwards.
+struct WorkDir {
+  fs::path path;
+  WorkDir() {
+    std::string pattern = (fs::temp_directory_path() / "gearpatch-test-cli-XXXXXX").string();
+    REQUIRE(mkdtemp(pattern.data()) != nullptr);
+    path = pattern;
+    fs::create_directory_symlink(testing::source_path("scenes"), path / "scenes");
+  }
+  ~WorkDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  /// Runs `arguments` with the binary from this folder.
+  int run(const std::string& arguments, std::string& output) const {
+    return testing::run_command("cd " + path.string() + " && " + kBinary + " " + arguments, output);
+  }
+};
+
+/// The lines after "examples:" in a help text, each without its indent.
+std::vector<std::string> examples_of(const std::string& help) {
+  std::vector<std::string> examples;
+  const auto at = help.find("\nexamples:\n");
+  if (at == std::string::npos) return examples;
+  std::istringstream lines(help.substr(at + 11));
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("  gearpatch ", 0) == 0) examples.push_back(line.substr(2));
+  return examples;
+}
+
+}  // namespace
+
+TEST_CASE("--tolerance is a percentage with its unit; a bare number is refused", "[common][cli]") {
+  WorkDir dir;
+  std::string output;
+  // 5 once meant 500 % and passed anything; 0.5 meant 50 %.
+  for (const char* bare : {"5", "0.5", "0.005"}) {
+    INFO(bare);
+    CHECK(dir.run(std::string("verify scenes/bild5a.ini --tolerance ") + bare, output) == 2);
+    CHECK_THAT(output, Catch::Contains("the unit is missing") && Catch::Contains("--tolerance 0.5%"));
+    CHECK_THAT(output, !Catch::Contains("running ngspice"));
+  }
+  CHECK(dir.run("verify scenes/bild5a.ini --tolerance 500%", output) == 2);
+  CHECK_THAT(output, Catch::Contains("--tolerance 500%: must be a finite percentage in (0%, 100%]"));
+  CHECK(dir.run("verify scenes/bild5a.ini --tolerance x%", output) == 2);
+  CHECK_THAT(output, Catch::Contains("--tolerance x%: not a number"));
+  // Written with its unit it is taken as a fraction of full scale: the report says 1 %.
+  CHECK(dir.run("verify scenes/bild5a.ini --tolerance 1% --json -", output) == 0);
+  CHECK_THAT(output, Catch::Contains("tolerance 1 % of full scale"));
+  CHECK(!fs::exists(dir.path / "-"));
+}
+
+TEST_CASE("settings takes --json FILE and -o FILE like the other commands; - is stdout", "[common][cli]") {
+  WorkDir dir;
+  std::string output;
+  REQUIRE(dir.run("settings scenes/bild5b.ini --json s.json -o s.txt", output) == 0);
+  const auto settings = nlohmann::json::parse(read_file((dir.path / "s.json").string()));
+  CHECK(settings.contains("peaks"));
+  CHECK_THAT(read_file((dir.path / "s.txt").string()), Catch::Contains("alpha"));
+  // --json -: stdout holds only the JSON (the table goes to stderr) and no file named "-" appears.
+  REQUIRE(testing::run_command("(cd " + dir.path.string() + " && " + kBinary +
+                                   " settings scenes/bild5b.ini --json - > stdout.txt)",
+                               output) == 0);
+  CHECK(nlohmann::json::parse(read_file((dir.path / "stdout.txt").string())) == settings);
+  CHECK_THAT(output, Catch::Contains("alpha"));  // the table, on stderr
+  for (const std::string command : {"settings scenes/bild5b.ini -o -", "simulate scenes/bild5b.ini -o - --dt 0.1",
+                                    "netlist scenes/bild5b.ini -o -",
+                                    "reduce scenes/stages/drive_train.ini --json -"})
+    CHECK(dir.run(command, output) == 0);
+  CHECK(!fs::exists(dir.path / "-"));
+  // Two outputs cannot share stdout.
+  CHECK(dir.run("simulate scenes/bild5b.ini --events -", output) == 2);
+  CHECK_THAT(output, Catch::Contains("--events -: the same file as --out"));
+  CHECK(dir.run("verify scenes/bild5b.ini --json - --keep-deck -", output) == 2);
+  CHECK_THAT(output, Catch::Contains("--keep-deck -: the same file as --json") && !Catch::Contains("running ngspice"));
+}
+
+TEST_CASE("gearpatch --version prints the project's version", "[common][cli]") {
+  std::string output;
+  CHECK(testing::run_command(kBinary + " --version", output) == 0);
+  CHECK(output == std::string("gearpatch ") + GEARPATCH_VERSION + "\n");
+}
+
+TEST_CASE("every --help ends with examples that run as written", "[common][cli][ngspice]") {
+  WorkDir dir;
+  std::string help;
+  REQUIRE(dir.run("--help", help) == 0);
+  std::vector<std::string> commands = {""};
+  for (const char* name : {"simulate", "settings", "netlist", "verify", "bench", "reduce"}) {
+    CHECK_THAT(help, Catch::Contains(std::string("  ") + name + " "));
+    commands.push_back(name);
+  }
+  for (const std::string& command : commands) {
+    INFO("gearpatch " << command << " --help");
+    REQUIRE(dir.run(command + " --help", help) == 0);
+    const auto examples = examples_of(help);
+    CHECK(!examples.empty());
+    CHECK(help.substr(help.rfind("\nexamples:\n")).find("\n\n", 1) == std::string::npos);  // it ends the help
+    for (const std::string& example : examples) {
+      INFO(example);
+      std::string output;
+      CHECK(dir.run(example.substr(std::string("gearpatch ").size()) + " 2>&1", output) == 0);
+    }
+  }
+}
