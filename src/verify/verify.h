@@ -40,7 +40,7 @@ struct VerifyResult {
   Comparison comparison;
   std::vector<Overload> overloads;
   double beta = 1;
-  double jump_window = 0;  ///< s around each jump of a signal left out of its errors
+  double duration = 0;  ///< s, real time of the run
   double ngspice_seconds = 0;
   Trajectory reference;
   CircuitTrace circuit;
