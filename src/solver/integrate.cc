@@ -216,6 +216,9 @@ class Outputs {
   void event(const EventRecord& record) {
     for (auto& grid : grids_) grid.second->event(record);
   }
+  void interval(double a, double b, const Mode& mode, const Segment& segment) {
+    for (auto& grid : grids_) grid.second->interval(a, b, mode, segment);
+  }
 
  private:
   void add(double step, double duration, Observer& observer) {
@@ -243,8 +246,9 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
   while (t < spec.duration) {
     auto segment = stepper.start(model, mode, state, t, spec.duration);
     const Crossing crossing = locate_first_crossing(
-        *segment, model.guards(mode), t, [&](double, double b) {
+        *segment, model.guards(mode), t, [&](double a, double b) {
           steps.count(b, model, mode);
+          outputs.interval(a, b, mode, *segment);
           outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
         });
     GearState before = segment->state_at(crossing.time);
@@ -286,7 +290,10 @@ Trajectory simulate(const GearModel& model, const GearState& initial, const RunS
   check_output_grid(spec);  // before the samples are reserved
   Trajectory trajectory;
   trajectory.samples.reserve(static_cast<std::size_t>(spec.rows()));
-  TrajectoryRecorder recorder(model, trajectory);
+  trajectory.closed_form = solver == SolverKind::exact;
+  // Event samples fill what the row limit leaves after the grid.
+  TrajectoryRecorder recorder(model, trajectory,
+                              static_cast<std::size_t>(RunSpec::max_rows - spec.rows()));
   integrate(model, *stepper, initial, spec, recorder);
   return trajectory;
 }
