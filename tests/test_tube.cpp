@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/scene_inputs.h"
+#include "solver/integrate.h"
+#include "support.h"
 #include "verify/impacts.h"
 #include "verify/tube.h"
 
@@ -95,4 +98,68 @@ TEST_CASE("the tube's edges widen at a jump and hug the curve elsewhere", "[veri
   CHECK(tube.bounds(1.5) == std::pair(0.99, 1.01));
   CHECK(tube.reference(1.0) == 1.0);
   CHECK(tube.reference(0.5) == 0.0);
+}
+
+namespace {
+
+/// The reference's own samples as a circuit trace: a perfect circuit.
+verify::CircuitTrace as_circuit(const Trajectory& reference) {
+  verify::CircuitTrace c;
+  for (const Sample& s : reference.samples) {
+    c.t.push_back(s.t);
+    for (Signal signal : all_signals) c.signals[signal].push_back(value(s, signal));
+  }
+  return c;
+}
+
+/// A touch of the flanks `depth` rad deep in free flight, after the first release.
+void add_touch(const Trajectory& reference, double eps, double depth, verify::CircuitTrace& c) {
+  double after = 0;
+  for (const EventRecord& e : reference.events)
+    if (e.kind == GuardKind::release) {
+      after = e.t;
+      break;
+    }
+  auto& x = c.signals.at(Signal::dphi);
+  std::size_t i = 0;
+  while (c.t[i] < after + 0.1) ++i;
+  const double side = x[i] < 0 ? -1 : 1;
+  for (double bump : {0.5, 1.0, 0.5}) x[i++] = side * (eps + bump * depth);
+}
+
+}  // namespace
+
+TEST_CASE("a touch below the machine's resolution is grazing, a real extra or missing impact is not",
+          "[verify]") {
+  const Scene scene = testing::example_scene("bild5b");
+  const GearModel model(gear_parameters(scene));
+  const Trajectory reference = simulate(model, initial_state(scene), run_spec(scene));
+  const double eps = model.parameters().half_backlash;
+  const double resolution = 1e-4;  // rad beyond ε
+
+  const verify::ImpactMatch perfect = verify::match_impacts(reference, as_circuit(reference), model, resolution);
+  CHECK(perfect.impacts.size() == 3);
+  CHECK(perfect.circuit_count == 3);
+  CHECK(perfect.missing() == 0);
+  CHECK(perfect.extra() == 0);
+
+  verify::CircuitTrace grazed = as_circuit(reference);
+  add_touch(reference, eps, 0.5 * resolution, grazed);
+  const verify::ImpactMatch graze = verify::match_impacts(reference, grazed, model, resolution);
+  CHECK(graze.circuit_count == 4);
+  CHECK(graze.extra() == 0);
+  REQUIRE(graze.impacts.size() == 4);
+  CHECK(graze.impacts.back().grazing);
+  CHECK(graze.impacts.back().depth == Approx(0.5 * resolution));
+
+  verify::CircuitTrace bounced = as_circuit(reference);
+  add_touch(reference, eps, 100 * resolution, bounced);
+  const verify::ImpactMatch bounce = verify::match_impacts(reference, bounced, model, resolution);
+  CHECK(bounce.extra() == 1);
+  CHECK(!bounce.impacts.back().grazing);
+
+  verify::CircuitTrace slack = as_circuit(reference);
+  for (double& x : slack.signals.at(Signal::dphi)) x *= 0.5;  // never reaches the flanks
+  const verify::ImpactMatch none = verify::match_impacts(reference, slack, model, resolution);
+  CHECK(none.missing() == 3);
 }

@@ -14,35 +14,14 @@ struct Contact {
   double restitution = -1;
 };
 
-bool is_contact(GuardKind k) { return k == GuardKind::contact_positive || k == GuardKind::contact_negative; }
-
-double relative_speed(const GearState& s) { return s.omega_p - s.omega_s; }
-
-/// The reference's contacts from its event list; depth and peak from the
-/// samples inside and the states at both ends.
-std::vector<Contact> reference_contacts(const Trajectory& ref, const GearModel& model, bool free) {
-  const double eps = model.parameters().half_backlash;
+/// The reference's contacts as the solver recorded them: depth, peak torque
+/// and restitution from the closed form of each mode, not from the grid.
+std::vector<Contact> reference_contacts(const Trajectory& ref, double eps, bool free) {
   std::vector<Contact> out;
-  for (std::size_t k = 0; k < ref.events.size(); ++k) {
-    const EventRecord& e = ref.events[k];
-    if (!is_contact(e.kind)) continue;
-    Contact c{e.t, ref.samples.empty() ? e.t : ref.samples.back().t};
-    c.peak = std::abs(model.torque(e.mode_after, e.after));
-    for (std::size_t j = k + 1; j < ref.events.size(); ++j)
-      if (ref.events[j].kind == GuardKind::release || is_contact(ref.events[j].kind)) {
-        const EventRecord& r = ref.events[j];
-        c.end = r.t;
-        c.depth = std::max(c.depth, std::abs(r.before.dphi) - eps);
-        c.peak = std::max(c.peak, std::abs(model.torque(r.mode_before, r.before)));
-        if (free && r.kind == GuardKind::release && relative_speed(e.before) != 0)
-          c.restitution = -relative_speed(r.after) / relative_speed(e.before);
-        break;
-      }
-    for (const Sample& s : ref.samples)
-      if (s.t >= c.begin && s.t <= c.end) {
-        c.depth = std::max(c.depth, std::abs(s.dphi) - eps);
-        c.peak = std::max(c.peak, std::abs(s.m0));
-      }
+  for (const ContactRecord& r : ref.contacts) {
+    if (!r.impact) continue;  // the run started in contact: no impact to match
+    Contact c{r.start, r.end, std::abs(r.twist.value) - eps, std::abs(r.torque.value)};
+    if (free && r.released && std::isfinite(r.restitution)) c.restitution = r.restitution;
     out.push_back(c);
   }
   return out;
@@ -115,7 +94,7 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
   const double eps = model.parameters().half_backlash;
   if (eps == 0) return out;
   const bool free = frictionless_and_free(model.parameters());
-  const std::vector<Contact> ref = reference_contacts(reference, model, free);
+  const std::vector<Contact> ref = reference_contacts(reference, eps, free);
   const std::vector<Contact> cir = circuit_contacts(circuit, eps, free);
   out.circuit_count = static_cast<int>(cir.size());
   // Nearest pairs first, each contact used once: a shallow contact on one
