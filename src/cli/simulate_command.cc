@@ -20,7 +20,7 @@ int run_simulate(const std::vector<std::string>& args) {
        "exact: closed form per mode, exact to rounding (default); adaptive: "
        "Dormand-Prince 5(4) with dense output, error set by --rtol")
       ("rtol", po::value<double>()->default_value(1e-10), "tolerance of the adaptive solver, 1e-14 … 0.1")
-      ("dt", po::value<double>(), "output step in s, > 0 (default: scene's run.output_step or duration/2000)")
+      ("dt", po::value<double>(), "output step in s, > 0 (default: scene's run.output_step, or duration/2000 and at least 20 a contact period)")
       ("out,o", po::value<std::string>(), "CSV file t,omega_p,omega_s,dphi,m0,event (SI units; a row at each event instant, event naming it; default stdout)")
       ("events", po::value<std::string>(), "CSV file of mode changes: t,kind,omega_p,omega_s,dphi,mode")
       ("summary", po::value<std::string>(), "JSON file of each contact (impact time, speeds before and "
@@ -49,6 +49,8 @@ int run_simulate(const std::vector<std::string>& args) {
   if (outputs.has("--events")) outputs.stage("--events", trajectory.events_csv());
   if (outputs.has("--summary")) outputs.stage("--summary", summary_json(trajectory));
   outputs.commit();
+  const std::string warning = undersampling_warning(model.parameters(), spec, trajectory);
+  if (!warning.empty()) fmt::print(stderr, "{}\n", warning);
   if (!outputs.has("--summary") && outputs.path("--out") != "-") fmt::print("{}", summary_text(trajectory));
   return 0;
 }

@@ -278,6 +278,30 @@ void check_output_grid(const RunSpec& spec) {
                             spec.output_step, spec.rows(), spec.duration, RunSpec::max_rows));
 }
 
+double contact_period(const GearParameters& p) {
+  return 2 * std::numbers::pi /
+         std::sqrt(p.stiffness * (1 / p.inertia_primary + 1 / p.inertia_secondary));
+}
+
+double default_output_step(const GearParameters& p, double duration) {
+  const double physics = std::min(duration / 2000, contact_period(p) / RunSpec::samples_per_period);
+  return std::max(physics, duration / RunSpec::max_default_rows);
+}
+
+std::string undersampling_warning(const GearParameters& p, const RunSpec& spec,
+                                  const Trajectory& trajectory) {
+  const double period = contact_period(p);
+  const bool touched = !trajectory.contacts.empty() || p.half_backlash == 0;
+  if (!touched || !(spec.output_step > period / RunSpec::samples_per_period * (1 + 1e-9)))
+    return {};
+  return fmt::format(
+      "warning: the output step of {:.3g} s samples the contact oscillation (period {:.3g} s) "
+      "{:.3g} times a period, fewer than {:g}: the grid misses the peaks of each contact (the "
+      "summary has them exact); an output step of {:.3g} s or less resolves them",
+      spec.output_step, period, period / spec.output_step, RunSpec::samples_per_period,
+      period / RunSpec::samples_per_period);
+}
+
 SolverKind parse_solver(const std::string& name) {
   if (name == "exact") return SolverKind::exact;
   if (name == "adaptive") return SolverKind::adaptive;

@@ -64,6 +64,14 @@ void judge(VerifyResult& r) {
   r.passed = r.failures.empty();
 }
 
+/// The reference's output grid: the scene's run.output_step when it gives
+/// one, else the finer of the preset's grid and the default that samples a
+/// contact at least 20 times a period.
+double reference_step(const Scene& scene, const VerifyOptions& options) {
+  if (scene.output_step) return *scene.output_step;
+  return std::min(scene.duration / options.transient.output_points, run_spec(scene).output_step);
+}
+
 /// verify, its errors from below not yet located in the scene file.
 VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator) {
   VerifyResult r;
@@ -78,7 +86,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   TrajectoryRecorder recorder(model, r.reference);
   PeakRun run;
   try {
-    run.peaks = simulate_peaks(input, {{scene.duration / options.transient.output_points, recorder}});
+    run.peaks = simulate_peaks(input, {{reference_step(scene, options), recorder}});
   } catch (const Error& e) {
     run.failure = e;
   }
