@@ -64,6 +64,14 @@ std::pair<std::vector<double>, std::vector<double>> reference_curve(const Trajec
     }
     t.push_back(s.t), y.push_back(value(s, signal));
   }
+  // A contact shorter than the grid step peaks between samples: its closed-form
+  // peak torque and twist become vertices, so the tube holds the true peak.
+  for (const ContactRecord& c : ref.contacts) {
+    const Extremum* peak = signal == Signal::m0 ? &c.torque : signal == Signal::dphi ? &c.twist : nullptr;
+    if (!peak || t.empty() || peak->t < t.front() || peak->t > t.back()) continue;
+    const auto at = std::upper_bound(t.begin(), t.end(), peak->t) - t.begin();
+    t.insert(t.begin() + at, peak->t), y.insert(y.begin() + at, peak->value);
+  }
   return {t, y};
 }
 

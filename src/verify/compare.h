@@ -45,7 +45,8 @@ struct Comparison {
 };
 
 /// The reference signal as a polyline: its samples with each event's state
-/// before and after inserted at the event's instant, so a jump is vertical.
+/// before and after inserted at the event's instant, so a jump is vertical,
+/// and each contact's closed-form peak torque (M0) or twist (Δφ).
 std::pair<std::vector<double>, std::vector<double>> reference_curve(const Trajectory& reference,
                                                                     const GearModel& model, Signal signal);
 

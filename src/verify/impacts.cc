@@ -12,6 +12,7 @@ struct Contact {
   double begin = 0, end = 0;
   double depth = 0, peak = 0;
   double restitution = -1;
+  bool released = false;  ///< false: still in contact when the run ends, its peak perhaps not reached
 };
 
 /// The reference's contacts as the solver recorded them: depth, peak torque
@@ -21,6 +22,7 @@ std::vector<Contact> reference_contacts(const Trajectory& ref, double eps, bool 
   for (const ContactRecord& r : ref.contacts) {
     if (!r.impact) continue;  // the run started in contact: no impact to match
     Contact c{r.start, r.end, std::abs(r.twist.value) - eps, std::abs(r.torque.value)};
+    c.released = r.released;
     if (free && r.released && std::isfinite(r.restitution)) c.restitution = r.restitution;
     out.push_back(c);
   }
@@ -50,6 +52,7 @@ std::vector<Contact> circuit_contacts(const CircuitTrace& c, double eps, bool fr
       inside = true;
     } else if (inside && a > 0 && b <= 0) {
       out.back().end = crossing;
+      out.back().released = true;
       inside = false;
     }
     if (inside) {
@@ -118,6 +121,7 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
       m.depth = std::max(m.depth, c.depth);
       m.peak_circuit = c.peak;
       m.restitution_circuit = c.restitution;
+      m.released = ref[i].released && c.released;
     } else {
       m.grazing = m.depth <= grazing_depth;
     }

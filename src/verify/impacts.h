@@ -15,6 +15,7 @@ struct Impact {
   bool grazing = false;  ///< unmatched, and too shallow for the machine to resolve
   double peak_reference = 0, peak_circuit = 0;  ///< N·m, largest |M0| within the contact
   double restitution_reference = -1, restitution_circuit = -1;  ///< -1: not measured
+  bool released = false;  ///< matched and parted in both runs: its peak is complete
   double peak_error = 0;  ///< |peak_circuit − peak_reference| / M0's full scale, matched impacts
   bool matched() const { return reference >= 0 && circuit >= 0; }
 };

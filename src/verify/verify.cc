@@ -40,7 +40,7 @@ void judge_impacts(VerifyResult& r) {
       r.failures.push_back(fmt::format("the circuit has an impact at t = {:.6g} s ({:.3g} rad deep) that "
                                        "the reference lacks", i.circuit, i.depth));
     if (!i.matched()) continue;
-    if (i.peak_error > r.tolerance)
+    if (i.released && i.peak_error > r.tolerance)
       r.failures.push_back(fmt::format("the impact at t = {:.6g} s peaks at {:.6g} N·m, the reference at "
                                        "{:.6g} N·m ({:.3g} % of full scale)",
                                        i.reference, i.peak_circuit, i.peak_reference, 100 * i.peak_error));
@@ -50,7 +50,9 @@ void judge_impacts(VerifyResult& r) {
                                        "reference with {:.4f}", i.reference, i.restitution_circuit,
                                        i.restitution_reference));
   }
-  if (c.worst_impact_shift > r.tolerance && c.impacts.missing() == 0)
+  // A crossing is interpolated between circuit points: a shift of exactly the
+  // tolerance reads a hair either side of it.
+  if (c.worst_impact_shift > r.tolerance * (1 + 1e-3) && c.impacts.missing() == 0)
     r.failures.push_back(fmt::format("impact times differ by up to {:.3g} % of the run",
                                      100 * c.worst_impact_shift));
 }
