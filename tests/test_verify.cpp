@@ -396,6 +396,10 @@ TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; s
   const verify::VerifyResult s = verify::verify(scene, {}, scaled);
   CHECK(!s.passed);
   CHECK_THAT(verify::to_table(s), Catch::Contains("leaves the tube"));
+  // The plot shades the tube where the circuit leaves it and draws the band ±ε on Δφ.
+  const std::string svg = verify::plot_image(s, "svg");
+  CHECK_THAT(svg, Catch::Contains("tube where the circuit leaves it") && Catch::Contains("+-eps (backlash)") &&
+                      Catch::Contains("reference (exact)"));
 }
 
 TEST_CASE("verify fails a deck whose impact peak is 10 % low, the peak between grid points",

@@ -106,27 +106,4 @@ std::string to_json(const VerifyResult& r) {
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-std::string plot_image(const VerifyResult& r, const std::string& format) {
-  std::string script = "$reference << EOD\n";
-  for (const auto& s : r.reference.samples)
-    script += fmt::format("{} {} {} {} {}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0);
-  script += "EOD\n$circuit << EOD\n";
-  const auto& c = r.circuit;
-  for (std::size_t i = 0; i < c.t.size(); ++i)
-    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at(Signal::omega_p)[i],
-                          c.signals.at(Signal::omega_s)[i], c.signals.at(Signal::dphi)[i],
-                          c.signals.at(Signal::m0)[i]);
-  // The scene's name is the user's text: a string literal, never code.
-  script += fmt::format("EOD\nset multiplot layout 4,1 title {} noenhanced\nset grid\nset key right top\n",
-                        gnuplot_string(fmt::format("gearpatch verify {} ({}): {}", r.scene, level_name(r.level),
-                                                   r.passed ? "PASS" : "FAIL")));
-  const char* labels[] = {"phi_p' [rad/s]", "phi_s' [rad/s]", "dphi [rad]", "M0 [N m]"};
-  for (int k = 0; k < 4; ++k)
-    script += fmt::format(
-        "set ylabel \"{}\"\n{}plot $reference using 1:{} with lines lw 2 lc rgb '#1f77b4' title 'reference', "
-        "$circuit using 1:{} with lines dt 2 lw 1.5 lc rgb '#d62728' title 'circuit'\n",
-        labels[k], k == 3 ? "set xlabel 't [s]'\n" : "", k + 2, k + 2);
-  return draw_with_gnuplot(format, 1000, 900, script + "unset multiplot\n");
-}
-
 }  // namespace gearpatch::verify

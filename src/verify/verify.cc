@@ -85,6 +85,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   // fine grid) and the comparison (the deck's output grid).
   const ScalingInput input = scaling_input(scene);
   const GearModel model(input.gear);
+  r.gear = input.gear;
   TrajectoryRecorder recorder(model, r.reference);
   PeakRun run;
   try {

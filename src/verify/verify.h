@@ -5,6 +5,7 @@
 
 #include "circuit/block_library.h"
 #include "circuit/netlist.h"
+#include "model/gear_model.h"
 #include "solver/trajectory.h"
 #include "spice/simulator.h"
 #include "verify/compare.h"
@@ -42,6 +43,7 @@ struct VerifyResult {
   double beta = 1;
   double duration = 0;  ///< s, real time of the run
   double ngspice_seconds = 0;
+  GearParameters gear;  ///< the reference model's, for the plot
   Trajectory reference;
   CircuitTrace circuit;
 };
