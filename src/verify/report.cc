@@ -33,6 +33,7 @@ std::string impact_rows(const VerifyResult& r) {
                      ratio(i.restitution_reference), ratio(i.restitution_circuit), note);
   }
   if (impacts.size() > shown) t += fmt::format("  ... {} more (--json lists all)\n", impacts.size() - shown);
+  for (std::size_t at; (at = t.find(" \n")) != std::string::npos;) t.erase(at, 1);  // no trailing blanks
   return t;
 }
 
