@@ -189,7 +189,7 @@ TEST_CASE("a command whose later output fails leaves none of its outputs", "[com
   // "-" writes through to stdout.
   CHECK(testing::run_command(kBinary + " simulate " + scene("bild5a") + " --out - --events " + dir / "e.csv",
                              output) == 0);
-  CHECK_THAT(output, Catch::StartsWith("t,omega_p,omega_s,dphi,m0\n"));
+  CHECK_THAT(output, Catch::StartsWith("t,omega_p,omega_s,dphi,m0,event\n"));
   CHECK(dir.listing() == "e.csv ");
 }
 

@@ -109,7 +109,7 @@ TEST_CASE("verify fails when one potentiometer is off by 20 %", "[verify][ngspic
                                               testing::source_path("scenes/bild5b.ini") + " --deck " + file,
                                           output);
   CHECK(status == 1);
-  CHECK_THAT(output, Catch::Contains("FAIL") && Catch::Contains("% of full scale at t ="));
+  CHECK_THAT(output, Catch::Contains("FAIL") && Catch::Contains("leaves the tube at t ="));
 }
 
 TEST_CASE("verify names the scene file and line of a scaling refusal, before any simulator run", "[verify]") {
@@ -297,13 +297,13 @@ TEST_CASE("a trace cut short or without points is a simulator failure, not a ver
   spice::Vectors none = perfect;
   for (auto& [name, values] : none.data) values.clear();
   CHECK_THAT(simulator_failure(scene, none), Catch::Contains("cut short: no complete point"));
-  // The interpolation itself refuses an empty trace (it used to read front() of it).
+  // The comparison itself refuses an empty trace (it used to read front() of it).
   const GearModel model(gear_parameters(scene));
   const Trajectory reference = simulate(model, initial_state(scene), run_spec(scene));
   verify::CircuitTrace empty;
   for (Signal signal : all_signals) empty.signals[signal] = {};
   try {
-    verify::compare(reference, empty, model, {{Signal::omega_p, 1.0}}, scene.duration, 0);
+    verify::compare(reference, empty, model, {{{Signal::omega_p, 1.0}}, scene.duration});
     FAIL("compared an empty trace");
   } catch (const Error& e) {
     CHECK(e.kind() == Error::Kind::internal);
@@ -351,4 +351,84 @@ TEST_CASE("internal errors have their own exit status", "[verify][cli]") {
   CHECK(exit_status(Error::Kind::input) == 2);
   CHECK(exit_status(Error::Kind::simulator) == 3);
   CHECK(exit_status(Error::Kind::internal) == 4);
+}
+
+TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; scaled by 1.02 it fails",
+          "[verify]") {
+  const Scene scene = testing::example_scene("bild5b");
+  spice::ScriptedSimulator first;  // a dead circuit, for the reference
+  spice::Vectors flat;
+  flat.data["time"] = {0, 3};
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
+  first.then_return(flat);
+  const verify::VerifyResult seen = verify::verify(scene, {}, first);
+  const spice::Vectors perfect = perfect_circuit(scene, seen);
+
+  // Late by 0.5 % of the run: each value is the reference's 0.5 % earlier
+  // (the circuit rests at its initial state until then).
+  const double shift = 0.005 * scene.duration * make_patch(scene).beta;
+  spice::Vectors late = perfect;
+  const auto& time = perfect.data.at("time");
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) {
+    const auto& y = perfect.data.at(n);
+    for (std::size_t i = 0; i < time.size(); ++i) {
+      const double at = std::max(time[i] - shift, 0.0);
+      const std::size_t j = std::upper_bound(time.begin(), time.end(), at) - time.begin();
+      const double w = j < time.size() ? (at - time[j - 1]) / (time[j] - time[j - 1]) : 0;
+      late.data[n][i] = j < time.size() ? y[j - 1] + w * (y[j] - y[j - 1]) : y.back();
+    }
+  }
+  spice::ScriptedSimulator shifted;
+  shifted.then_return(late);
+  const verify::VerifyResult r = verify::verify(scene, {}, shifted);
+  INFO(verify::to_table(r));
+  CHECK(r.passed);
+  CHECK(r.comparison.worst_impact_shift == Approx(0.005).epsilon(0.01));
+  double pointwise = 0;
+  for (const auto& e : r.comparison.signals) pointwise = std::max(pointwise, e.pointwise_error);
+  CHECK(pointwise > 0.1);  // what the old pointwise comparison would have failed on
+
+  spice::Vectors high = perfect;
+  for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"})
+    for (double& v : high.data[n]) v *= 1.02;
+  spice::ScriptedSimulator scaled;
+  scaled.then_return(high);
+  const verify::VerifyResult s = verify::verify(scene, {}, scaled);
+  CHECK(!s.passed);
+  CHECK_THAT(verify::to_table(s), Catch::Contains("leaves the tube"));
+  // The plot shades the tube where the circuit leaves it and draws the band ±ε on Δφ.
+  const std::string svg = verify::plot_image(s, "svg");
+  CHECK_THAT(svg, Catch::Contains("tube where the circuit leaves it") && Catch::Contains("+-eps (backlash)") &&
+                      Catch::Contains("reference (exact)"));
+}
+
+TEST_CASE("verify fails a deck whose impact peak is 10 % low, the peak between grid points",
+          "[verify][ngspice][cli]") {
+  // Stiff contacts (period 2.8 ms) on a 1 ms output grid, shorter than the
+  // 2.5 ms time tolerance: only the closed-form peak check can see the peak.
+  const std::string scene_file = temp_file("stiff.ini");
+  write_file_atomically(scene_file, "name = stiff\n[gear]\ninertia_primary = 1\ninertia_secondary = 1\n"
+                                    "stiffness = 2.52e6\nrestitution = 1\nbacklash = 0.0014\n[initial]\n"
+                                    "speed_primary = 0.2\nspeed_secondary = 0\n[run]\nduration = 0.5\n"
+                                    "output_step = 1e-3\n");
+  const std::string deck_file = temp_file("stiff.cir");
+  std::string output;
+  REQUIRE(testing::run_command(std::string(GEARPATCH_BINARY) + " netlist " + scene_file + " -o " + deck_file,
+                               output) == 0);
+  const std::string verify = std::string(GEARPATCH_BINARY) + " verify " + scene_file + " --deck " + deck_file;
+  CHECK(testing::run_command(verify, output) == 0);  // the deck as written passes, its peaks included
+  INFO(output);
+  CHECK_THAT(output, !Catch::Contains("peaks at"));
+
+  // The coupling's potentiometer at 0.81: the peak v·sqrt(c·Θ) drops by 10 %.
+  std::string deck = read_file(deck_file);
+  const std::regex alpha13(R"(\.param alpha13=([0-9.eE+-]+))");
+  std::smatch m;
+  REQUIRE(std::regex_search(deck, m, alpha13));
+  deck = std::regex_replace(deck, alpha13, ".param alpha13=" + std::to_string(std::stod(m[1]) * 0.81));
+  write_file_atomically(deck_file, deck);
+  CHECK(testing::run_command(verify, output) == 1);
+  INFO(output);
+  CHECK_THAT(output, Catch::Contains("the impact at t = 0.0035 s peaks at 202.0") &&
+                         Catch::Contains("the reference at 224.499 N·m (10 % of full scale)"));
 }

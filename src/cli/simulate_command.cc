@@ -9,6 +9,7 @@
 #include "model/gear_model.h"
 #include "scene/scene_inputs.h"
 #include "solver/integrate.h"
+#include "solver/run_summary.h"
 
 namespace gearpatch::cli {
 
@@ -19,10 +20,12 @@ int run_simulate(const std::vector<std::string>& args) {
        "exact: closed form per mode, exact to rounding (default); adaptive: "
        "Dormand-Prince 5(4) with dense output, error set by --rtol")
       ("rtol", po::value<double>()->default_value(1e-10), "tolerance of the adaptive solver, 1e-14 … 0.1")
-      ("dt", po::value<double>(), "output step in s, > 0 (default: scene's run.output_step or duration/2000)")
-      ("out,o", po::value<std::string>(), "write the CSV t,omega_p,omega_s,dphi,m0 (SI units) to FILE "
-       "(default stdout; - is stdout)")
-      ("events", po::value<std::string>(), "CSV file of mode changes: t,kind,omega_p,omega_s,dphi,mode");
+      ("dt", po::value<double>(), "output step in s, > 0 (default: scene's run.output_step, or duration/2000 and at least 20 a contact period)")
+      ("out,o", po::value<std::string>(), "write the CSV t,omega_p,omega_s,dphi,m0,event (SI units; a row at each event instant, event naming it) to FILE (default stdout; - is stdout)")
+      ("events", po::value<std::string>(), "CSV file of mode changes: t,kind,omega_p,omega_s,dphi,mode")
+      ("summary", po::value<std::string>(), "JSON file of each contact (impact time, speeds before and "
+       "after, restitution, peak torque and twist) and the run's peaks, from the closed form ('-': "
+       "stdout; without it, a text summary goes to stdout when --out is a file)");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch simulate SCENE [options]\n\n"
                        "Runs the reference model of the paper's equations (6.1)-(6.10) and\n"
@@ -35,6 +38,7 @@ int run_simulate(const std::vector<std::string>& args) {
   OutputSet outputs;  // every target checked now, before the run
   outputs.add("--out", vm.count("out") ? vm["out"].as<std::string>() : "-");
   if (vm.count("events")) outputs.add("--events", vm["events"].as<std::string>());
+  if (vm.count("summary")) outputs.add("--summary", vm["summary"].as<std::string>());
   const Scene scene = load_scene(file);
   RunSpec spec = run_spec(scene);
   if (vm.count("dt")) spec.output_step = number_option(vm, "dt", 0, std::numeric_limits<double>::max(), true);
@@ -46,7 +50,11 @@ int run_simulate(const std::vector<std::string>& args) {
       with_scene(scene, [&] { return simulate(model, initial_state(scene), spec, solver, rtol); });
   outputs.stage("--out", trajectory.samples_csv());
   if (outputs.has("--events")) outputs.stage("--events", trajectory.events_csv());
+  if (outputs.has("--summary")) outputs.stage("--summary", summary_json(trajectory));
   outputs.commit();
+  const std::string warning = undersampling_warning(model.parameters(), spec, trajectory);
+  if (!warning.empty()) fmt::print(stderr, "{}\n", warning);
+  if (!outputs.has("--summary") && outputs.path("--out") != "-") fmt::print("{}", summary_text(trajectory));
   return 0;
 }
 

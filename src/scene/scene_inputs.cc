@@ -26,7 +26,7 @@ GearState initial_state(const Scene& s) { return {s.speed_primary, s.speed_secon
 RunSpec run_spec(const Scene& s) {
   RunSpec spec;
   spec.duration = s.duration;
-  spec.output_step = s.output_step.value_or(s.duration / 2000);
+  spec.output_step = s.output_step.value_or(default_output_step(gear_parameters(s), s.duration));
   return spec;
 }
 

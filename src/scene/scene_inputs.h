@@ -19,7 +19,8 @@ GearParameters gear_parameters(const Scene& scene);
 /// The scene's initial speeds and twist.
 GearState initial_state(const Scene& scene);
 
-/// The scene's duration and output step (default: 2000 intervals).
+/// The scene's duration and output step (default: 2000 intervals, finer for
+/// a short contact period: default_output_step in solver/integrate.h).
 RunSpec run_spec(const Scene& scene);
 
 /// What the scaling takes: the above, the drive's rated data, the [maxima]

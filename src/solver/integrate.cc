@@ -216,6 +216,9 @@ class Outputs {
   void event(const EventRecord& record) {
     for (auto& grid : grids_) grid.second->event(record);
   }
+  void interval(double a, double b, const Mode& mode, const Segment& segment) {
+    for (auto& grid : grids_) grid.second->interval(a, b, mode, segment);
+  }
 
  private:
   void add(double step, double duration, Observer& observer) {
@@ -243,8 +246,9 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
   while (t < spec.duration) {
     auto segment = stepper.start(model, mode, state, t, spec.duration);
     const Crossing crossing = locate_first_crossing(
-        *segment, model.guards(mode), t, [&](double, double b) {
+        *segment, model.guards(mode), t, [&](double a, double b) {
           steps.count(b, model, mode);
+          outputs.interval(a, b, mode, *segment);
           outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
         });
     GearState before = segment->state_at(crossing.time);
@@ -274,6 +278,30 @@ void check_output_grid(const RunSpec& spec) {
                             spec.output_step, spec.rows(), spec.duration, RunSpec::max_rows));
 }
 
+double contact_period(const GearParameters& p) {
+  return 2 * std::numbers::pi /
+         std::sqrt(p.stiffness * (1 / p.inertia_primary + 1 / p.inertia_secondary));
+}
+
+double default_output_step(const GearParameters& p, double duration) {
+  const double physics = std::min(duration / 2000, contact_period(p) / RunSpec::samples_per_period);
+  return std::max(physics, duration / RunSpec::max_default_rows);
+}
+
+std::string undersampling_warning(const GearParameters& p, const RunSpec& spec,
+                                  const Trajectory& trajectory) {
+  const double period = contact_period(p);
+  const bool touched = !trajectory.contacts.empty() || p.half_backlash == 0;
+  if (!touched || !(spec.output_step > period / RunSpec::samples_per_period * (1 + 1e-9)))
+    return {};
+  return fmt::format(
+      "warning: the output step of {:.3g} s samples the contact oscillation (period {:.3g} s) "
+      "{:.3g} times a period, fewer than {:g}: the grid misses the peaks of each contact (the "
+      "summary has them exact); an output step of {:.3g} s or less resolves them",
+      spec.output_step, period, period / spec.output_step, RunSpec::samples_per_period,
+      period / RunSpec::samples_per_period);
+}
+
 SolverKind parse_solver(const std::string& name) {
   if (name == "exact") return SolverKind::exact;
   if (name == "adaptive") return SolverKind::adaptive;
@@ -286,7 +314,10 @@ Trajectory simulate(const GearModel& model, const GearState& initial, const RunS
   check_output_grid(spec);  // before the samples are reserved
   Trajectory trajectory;
   trajectory.samples.reserve(static_cast<std::size_t>(spec.rows()));
-  TrajectoryRecorder recorder(model, trajectory);
+  trajectory.closed_form = solver == SolverKind::exact;
+  // Event samples fill what the row limit leaves after the grid.
+  TrajectoryRecorder recorder(model, trajectory,
+                              static_cast<std::size_t>(RunSpec::max_rows - spec.rows()));
   integrate(model, *stepper, initial, spec, recorder);
   return trajectory;
 }

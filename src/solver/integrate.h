@@ -21,6 +21,11 @@ struct RunSpec {
   /// The most output rows a run may have: a row costs about 130 bytes on its
   /// way to a CSV (the sample and its text), so 1e7 rows take 1.3 GB.
   static constexpr double max_rows = 1e7;
+  /// A default grid takes at most this many rows (130 MB of CSV): a stiff
+  /// contact settled for millions of periods is not sampled by default.
+  static constexpr double max_default_rows = 1e6;
+  /// A grid samples the contact oscillation at least this often a period.
+  static constexpr double samples_per_period = 20;
   /// Rows of the output grid t_k = min(k·output_step, duration), as a double
   /// so that a tiny step cannot overflow the count.
   double rows() const { return std::ceil(duration / output_step - 1e-9) + 1; }
@@ -29,6 +34,20 @@ struct RunSpec {
 /// Throws Error (input) unless the output step is finite and positive and the
 /// grid within RunSpec::max_rows: checked before anything is allocated for it.
 void check_output_grid(const RunSpec& spec);
+
+/// The period of the undamped contact oscillation, 2π/sqrt(c·(1/Θp + 1/Θs)).
+double contact_period(const GearParameters& p);
+
+/// The default output step: duration/2000, finer where that samples the
+/// contact fewer than RunSpec::samples_per_period times a period, but no
+/// finer than duration/RunSpec::max_default_rows.
+double default_output_step(const GearParameters& p, double duration);
+
+/// A warning when the output step samples a contact of `trajectory` fewer
+/// than RunSpec::samples_per_period times a period (its peaks lie between
+/// the samples); empty if it does not, or if the flanks never touched.
+std::string undersampling_warning(const GearParameters& p, const RunSpec& spec,
+                                  const Trajectory& trajectory);
 
 /// A further output grid of one run and the observer that sees it (verify
 /// checks the peaks on a fine grid and compares on the deck's).

@@ -37,4 +37,14 @@ double value(const Sample& s, Signal signal) {
   return 0;  // not reached
 }
 
+const Extremum& peak(const SignalPeaks& p, Signal signal) {
+  switch (signal) {
+    case Signal::omega_p: return p.omega_p;
+    case Signal::omega_s: return p.omega_s;
+    case Signal::dphi: return p.dphi;
+    case Signal::m0: return p.m0;
+  }
+  return p.m0;  // not reached
+}
+
 }  // namespace gearpatch

@@ -22,4 +22,7 @@ std::string unit(Signal signal);
 /// The signal's value in one output row.
 double value(const Sample& sample, Signal signal);
 
+/// The signal's peak over a run.
+const Extremum& peak(const SignalPeaks& peaks, Signal signal);
+
 }  // namespace gearpatch

@@ -1,17 +1,106 @@
 #include "solver/trajectory.h"
 
+#include <cmath>
 #include <fmt/format.h>
+#include <limits>
 
 namespace gearpatch {
+namespace {
+
+bool on_a_flank(Contact c) { return c == Contact::positive || c == Contact::negative; }
+
+constexpr LinearForm speed_primary{1, 0, 0, 0}, speed_secondary{0, 1, 0, 0}, twist{0, 0, 1, 0};
+
+void raise(Extremum& peak, const Extremum& candidate) {
+  if (std::abs(candidate.value) > std::abs(peak.value)) peak = candidate;
+}
+
+}  // namespace
 
 void TrajectoryRecorder::sample(double t, const Mode& mode, const GearState& s) {
   out_.samples.push_back({t, s.omega_p, s.omega_s, s.dphi, model_.torque(mode, s)});
 }
 
+void TrajectoryRecorder::event(const EventRecord& e) {
+  out_.events.push_back(e);
+  if (out_.event_samples.size() < max_event_samples_)
+    out_.event_samples.push_back(
+        {e.t, e.after.omega_p, e.after.omega_s, e.after.dphi, model_.torque(e.mode_after, e.after)});
+  if (e.mode_after.contact == e.mode_before.contact) return;
+  if (in_contact_) {  // the flanks part
+    ContactRecord& c = out_.contacts.back();
+    c.end = e.t;
+    c.released = true;
+    c.at_release = e.after;
+    const double before = c.at_impact.omega_p - c.at_impact.omega_s;
+    if (c.impact && before != 0) c.restitution = -(e.after.omega_p - e.after.omega_s) / before;
+    in_contact_ = false;
+  }
+  if (on_a_flank(e.mode_after.contact)) {  // the flanks meet
+    ContactRecord c;
+    c.start = c.end = e.t;
+    c.side = e.mode_after.contact == Contact::positive ? 1 : -1;
+    c.at_impact = c.at_release = e.before;
+    c.restitution = std::numeric_limits<double>::quiet_NaN();
+    out_.contacts.push_back(c);
+    in_contact_ = true;
+  }
+}
+
+void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Segment& segment) {
+  const ModeExtrema extrema(model_, mode, segment, a, b);
+  SignalPeaks& run = out_.peaks;
+  extrema.raise(speed_primary, run.omega_p);
+  extrema.raise(speed_secondary, run.omega_s);
+  if (on_a_flank(mode.contact) && !in_contact_) {  // the run started in this contact
+    ContactRecord c;
+    c.start = a;
+    c.side = mode.contact == Contact::positive ? 1 : -1;
+    c.impact = false;
+    c.at_impact = segment.state_at(a);
+    c.restitution = std::numeric_limits<double>::quiet_NaN();
+    out_.contacts.push_back(c);
+    in_contact_ = true;
+  }
+  if (!in_contact_) {
+    extrema.raise(twist, run.dphi);
+    if (mode.contact != Contact::free) extrema.raise(model_.torque_form(mode), run.m0);
+    return;
+  }
+  // The contact's peaks over this interval are the run's there too.
+  ContactRecord& c = out_.contacts.back();
+  extrema.raise(twist, c.twist);
+  extrema.raise(model_.torque_form(mode), c.torque);
+  raise(run.dphi, c.twist);
+  raise(run.m0, c.torque);
+  c.end = b;
+  c.at_release = segment.state_at(b);
+}
+
+std::vector<Sample> Trajectory::output() const {
+  std::vector<Sample> merged;
+  merged.reserve(samples.size() + event_samples.size());
+  auto e = event_samples.begin();
+  for (const Sample& s : samples) {
+    for (; e != event_samples.end() && e->t < s.t; ++e) merged.push_back(*e);
+    merged.push_back(s);
+  }
+  merged.insert(merged.end(), e, event_samples.end());
+  return merged;
+}
+
 std::string Trajectory::samples_csv() const {
-  std::string text = "t,omega_p,omega_s,dphi,m0\n";
-  for (const Sample& s : samples)
-    text += fmt::format("{},{},{},{},{}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0);
+  std::string text = "t,omega_p,omega_s,dphi,m0,event\n";
+  auto row = [&](const Sample& s, const std::string& kind) {
+    text += fmt::format("{},{},{},{},{},{}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0, kind);
+  };
+  std::size_t e = 0;
+  for (const Sample& s : samples) {
+    for (; e < event_samples.size() && event_samples[e].t < s.t; ++e)
+      row(event_samples[e], to_string(events[e].kind));
+    row(s, "");
+  }
+  for (; e < event_samples.size(); ++e) row(event_samples[e], to_string(events[e].kind));
   return text;
 }
 

@@ -1,11 +1,12 @@
 #pragma once
-#include <string>
+#include <utility>
 #include <vector>
 
 #include "model/gear_model.h"
 #include "solver/signal.h"
 #include "solver/trajectory.h"
 #include "verify/circuit_trace.h"
+#include "verify/impacts.h"
 
 namespace gearpatch::verify {
 
@@ -13,39 +14,47 @@ namespace gearpatch::verify {
 struct SignalError {
   Signal signal{};
   double full_scale = 1;
+  /// Amplitude error: the largest distance of a circuit point from the
+  /// reference after the best time shift within the time tolerance — the
+  /// tube's measure; it passes while this is at most the value tolerance.
   double max_error = 0;
-  double rms_error = 0;
-  double time_of_max = 0;  ///< s, real time
+  double pointwise_error = 0;  ///< largest |circuit − reference| at equal times, timing included
+  double rms_error = 0;        ///< RMS of the amplitude error over the circuit's points
+  double time_of_max = 0;      ///< s, real time of the largest amplitude error
   double reference_at_max = 0, circuit_at_max = 0;  ///< physical units
-  int jumps = 0;              ///< discontinuities of this signal in the reference
-  std::size_t excluded = 0;   ///< samples left out around them
+  std::size_t outside = 0;     ///< circuit points outside the tube
+  std::vector<std::pair<double, double>> failed_spans;  ///< s, where the circuit leaves the tube
 };
 
-/// One impact (flanks meeting) in the reference and, if found, in the circuit.
-struct ImpactTime {
-  double reference = 0;
-  double circuit = -1;  ///< -1: no matching impact in the circuit
+/// What the comparison needs besides the two runs.
+struct CompareSettings {
+  std::vector<std::pair<Signal, double>> full_scales;
+  double duration = 1;     ///< s, the run
+  double tolerance = 0.005;  ///< value tolerance as a fraction of full scale, time tolerance as one of the run
+  double grazing_depth = 0;  ///< rad beyond ε that the machine cannot resolve
 };
 
 /// Everything `verify` measures about a circuit run against the reference.
 struct Comparison {
   std::vector<SignalError> signals;
-  std::vector<ImpactTime> impacts;
-  int circuit_impacts = 0;
-  double worst_impact_shift = 0;   ///< max |Δt| / run duration
+  ImpactMatch impacts;
+  double time_tolerance = 0;       ///< s, the tube's half-width in time
+  double worst_impact_shift = 0;   ///< max |Δt| of matched impacts / run duration; 1 for a missing one
   std::vector<double> restitution; ///< measured per impact in the circuit (frictionless scenes)
   double momentum_drift = -1;      ///< max |Δ(Θp·φ̇p + Θs·φ̇s)| / initial scale, frictionless only
 };
 
-/// Compares the circuit trace with the reference trajectory. The circuit is
-/// linearly interpolated onto the reference's output grid; impacts are the
-/// outward crossings of |Δφ| = ε. Where a signal jumps in the reference (M0
-/// when damped flanks meet or part, φ̇s when a self-locking gear catches the
-/// load) a circuit can only match it in time, not in value: samples within
-/// `jump_window` seconds of a jump are left out of that signal's errors, and
-/// the impact times are checked instead.
+/// The reference signal as a polyline: its samples with each event's state
+/// before and after inserted at the event's instant, so a jump is vertical,
+/// and each contact's closed-form peak torque (M0) or twist (Δφ).
+std::pair<std::vector<double>, std::vector<double>> reference_curve(const Trajectory& reference,
+                                                                    const GearModel& model, Signal signal);
+
+/// Compares the circuit trace with the reference trajectory: each signal in a
+/// tube (verify/tube.h) of ±tolerance·duration in time and ±tolerance·full
+/// scale in value, every circuit point counted; the impacts matched one to
+/// one (verify/impacts.h); momentum for frictionless scenes.
 Comparison compare(const Trajectory& reference, const CircuitTrace& circuit, const GearModel& model,
-                   const std::vector<std::pair<Signal, double>>& full_scales, double duration,
-                   double jump_window);
+                   const CompareSettings& settings);
 
 }  // namespace gearpatch::verify

@@ -1,5 +1,6 @@
 #include "verify/report.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -10,6 +11,34 @@
 
 namespace gearpatch::verify {
 
+namespace {
+
+/// Per-impact rows of the table; a long run lists its first ones.
+std::string impact_rows(const VerifyResult& r) {
+  constexpr std::size_t shown = 20;
+  const auto& impacts = r.comparison.impacts.impacts;
+  std::string t = fmt::format("{:>12} {:>12} {:>8} {:>11} {:>11} {:>7} {:>7} {:>7}  {}\n", "t ref [s]",
+                              "t circuit", "shift %", "peak ref", "peak circ", "peak %", "k ref", "k circ", "");
+  const auto time = [](double x) { return x < 0 ? std::string("-") : fmt::format("{:.6g}", x); };
+  const auto ratio = [](double x) { return x < 0 ? std::string("-") : fmt::format("{:.4f}", x); };
+  for (std::size_t k = 0; k < std::min(shown, impacts.size()); ++k) {
+    const Impact& i = impacts[k];
+    const std::string note = i.grazing ? fmt::format("grazing, {:.3g} rad deep", i.depth)
+                           : i.circuit < 0 ? "missing in the circuit"
+                           : i.reference < 0 ? "not in the reference" : "";
+    t += fmt::format("{:>12} {:>12} {:>8} {:>11.5g} {:>11.5g} {:>7} {:>7} {:>7}  {}\n", time(i.reference),
+                     time(i.circuit),
+                     i.matched() ? fmt::format("{:.4f}", 100 * (i.circuit - i.reference) / r.duration) : "-",
+                     i.peak_reference, i.peak_circuit, i.matched() ? fmt::format("{:.3f}", 100 * i.peak_error) : "-",
+                     ratio(i.restitution_reference), ratio(i.restitution_circuit), note);
+  }
+  if (impacts.size() > shown) t += fmt::format("  ... {} more (--json lists all)\n", impacts.size() - shown);
+  for (std::size_t at; (at = t.find(" \n")) != std::string::npos;) t.erase(at, 1);  // no trailing blanks
+  return t;
+}
+
+}  // namespace
+
 std::string to_table(const VerifyResult& r) {
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {}\n\n",
                               r.scene, level_name(r.level), 100 * r.tolerance, r.beta);
@@ -19,24 +48,22 @@ std::string to_table(const VerifyResult& r) {
                                                 : "--deck without a gearpatch header, level and scaling "
                                                   "from the options (not checked against the deck)",
                      level_name(r.level), r.autoscaled ? "autoscale" : "paper");
-  t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12}  {}\n", "signal", "full scale", "unit",
-                   "max error %", "rms error %", "worst at t [s]");
+  t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12} {:>8} {:>8}  {}\n", "signal", "full scale", "unit",
+                   "amplitude %", "pointwise %", "rms %", "outside", "worst at t [s]");
   for (const auto& e : r.comparison.signals)
-    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f}  {:.6g}\n", to_string(e.signal),
-                     e.full_scale, unit(e.signal), 100 * e.max_error, 100 * e.rms_error, e.time_of_max);
-  for (const auto& e : r.comparison.signals)
-    if (e.jumps > 0)
-      t += fmt::format("  {} jumps {} times in the reference: compared outside +-{:.4g} s of each "
-                       "({} samples left out; the impact times check those instants)\n",
-                       to_string(e.signal), e.jumps, r.jump_window, e.excluded);
+    t += fmt::format("{:<9} {:>12.6g} {:>8} {:>12.4f} {:>12.4f} {:>8.4f} {:>8}  {:.6g}\n", to_string(e.signal),
+                     e.full_scale, unit(e.signal), 100 * e.max_error, 100 * e.pointwise_error, 100 * e.rms_error,
+                     e.outside, e.time_of_max);
+  t += fmt::format("  tube: +-{:.4g} s in time, +-{:.3g} % of full scale in value; amplitude = distance "
+                   "after the best shift within it, pointwise = at equal times\n",
+                   r.comparison.time_tolerance, 100 * r.tolerance);
   const auto& c = r.comparison;
-  if (!c.impacts.empty())
+  if (!c.impacts.impacts.empty()) {
     t += fmt::format("\nimpacts: reference {}, circuit {}; worst time shift {:.4f} % of the run\n",
-                     c.impacts.size(), c.circuit_impacts, 100 * c.worst_impact_shift);
-  if (!c.restitution.empty()) {
-    t += "restitution per impact (circuit):";
-    for (double k : c.restitution) t += fmt::format(" {:.4f}", k);
-    t += "\n";
+                     c.impacts.impacts.size() - std::count_if(c.impacts.impacts.begin(), c.impacts.impacts.end(),
+                                                              [](const Impact& i) { return i.reference < 0; }),
+                     c.impacts.circuit_count, 100 * c.worst_impact_shift);
+    t += impact_rows(r);
   }
   if (c.momentum_drift >= 0)
     t += fmt::format("momentum drift (circuit, no friction): {:.4f} %\n", 100 * c.momentum_drift);
@@ -64,13 +91,18 @@ std::string to_json(const VerifyResult& r) {
   j["ngspice_seconds"] = r.ngspice_seconds;
   for (const auto& e : r.comparison.signals)
     j["signals"][to_string(e.signal)] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
-                            {"rms_error", e.rms_error}, {"time_of_max", e.time_of_max},
-                            {"jumps", e.jumps}, {"excluded_samples", e.excluded}};
-  j["jump_window"] = r.jump_window;
+                                         {"pointwise_error", e.pointwise_error}, {"rms_error", e.rms_error},
+                                         {"time_of_max", e.time_of_max}, {"outside_samples", e.outside},
+                                         {"failed_spans", e.failed_spans}};
+  j["time_tolerance"] = r.comparison.time_tolerance;
   j["impacts"] = nlohmann::json::array();
-  for (const auto& i : r.comparison.impacts)
-    j["impacts"].push_back({{"reference", i.reference}, {"circuit", i.circuit}});
-  j["circuit_impacts"] = r.comparison.circuit_impacts;
+  for (const auto& i : r.comparison.impacts.impacts)
+    j["impacts"].push_back({{"reference", i.reference}, {"circuit", i.circuit}, {"depth", i.depth},
+                            {"grazing", i.grazing}, {"peak_reference", i.peak_reference},
+                            {"peak_circuit", i.peak_circuit}, {"peak_error", i.peak_error},
+                            {"restitution_reference", i.restitution_reference},
+                            {"restitution_circuit", i.restitution_circuit}});
+  j["circuit_impacts"] = r.comparison.impacts.circuit_count;
   j["worst_impact_shift"] = r.comparison.worst_impact_shift;
   j["restitution"] = r.comparison.restitution;
   if (r.comparison.momentum_drift >= 0) j["momentum_drift"] = r.comparison.momentum_drift;
@@ -81,29 +113,6 @@ std::string to_json(const VerifyResult& r) {
   j["warnings"] = r.warnings;
   // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
   return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
-}
-
-std::string plot_image(const VerifyResult& r, const std::string& format) {
-  std::string script = "$reference << EOD\n";
-  for (const auto& s : r.reference.samples)
-    script += fmt::format("{} {} {} {} {}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0);
-  script += "EOD\n$circuit << EOD\n";
-  const auto& c = r.circuit;
-  for (std::size_t i = 0; i < c.t.size(); ++i)
-    script += fmt::format("{} {} {} {} {}\n", c.t[i], c.signals.at(Signal::omega_p)[i],
-                          c.signals.at(Signal::omega_s)[i], c.signals.at(Signal::dphi)[i],
-                          c.signals.at(Signal::m0)[i]);
-  // The scene's name is the user's text: a string literal, never code.
-  script += fmt::format("EOD\nset multiplot layout 4,1 title {} noenhanced\nset grid\nset key right top\n",
-                        gnuplot_string(fmt::format("gearpatch verify {} ({}): {}", r.scene, level_name(r.level),
-                                                   r.passed ? "PASS" : "FAIL")));
-  const char* labels[] = {"phi_p' [rad/s]", "phi_s' [rad/s]", "dphi [rad]", "M0 [N m]"};
-  for (int k = 0; k < 4; ++k)
-    script += fmt::format(
-        "set ylabel \"{}\"\n{}plot $reference using 1:{} with lines lw 2 lc rgb '#1f77b4' title 'reference', "
-        "$circuit using 1:{} with lines dt 2 lw 1.5 lc rgb '#d62728' title 'circuit'\n",
-        labels[k], k == 3 ? "set xlabel 't [s]'\n" : "", k + 2, k + 2);
-  return draw_with_gnuplot(format, 1000, 900, script + "unset multiplot\n");
 }
 
 }  // namespace gearpatch::verify

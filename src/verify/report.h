@@ -12,8 +12,10 @@ std::string to_table(const VerifyResult& result);
 /// The same numbers as JSON, for scripts.
 std::string to_json(const VerifyResult& result);
 
-/// Circuit and reference traces of each signal on one time axis, through
-/// gnuplot. Returns the image, in `format` "png" or "svg" (common/gnuplot.h).
+/// Each signal on one time axis, through gnuplot (verify/plot.cc): the
+/// reference from the exact output (events and contact peaks included), the
+/// circuit over it, the tube shaded where the circuit leaves it, the band ±ε
+/// on Δφ and a caption. Returns the image, in `format` "png" or "svg".
 std::string plot_image(const VerifyResult& result, const std::string& format);
 
 }  // namespace gearpatch::verify

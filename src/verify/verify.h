@@ -5,6 +5,7 @@
 
 #include "circuit/block_library.h"
 #include "circuit/netlist.h"
+#include "model/gear_model.h"
 #include "solver/trajectory.h"
 #include "spice/deck_reader.h"
 #include "spice/simulator.h"
@@ -44,13 +45,14 @@ struct VerifyResult {
   Comparison comparison;
   std::vector<Overload> overloads;
   double beta = 1;
-  double jump_window = 0;  ///< s around each jump of a signal left out of its errors
+  double duration = 0;  ///< s, real time of the run
   double ngspice_seconds = 0;
   /// Whose scaling the deck was read back with: "generated" (verify's own
   /// deck), "header" (a --deck's gearpatch header) or "options" (a --deck
   /// without one: level and scaling as the options say, unchecked).
   std::string deck_scaling = "generated";
   bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale)
+  GearParameters gear;  ///< the reference model's, for the plot
   Trajectory reference;
   CircuitTrace circuit;
 };

@@ -1,0 +1,138 @@
+#include "solver/mode_extrema.h"
+
+#include <algorithm>
+#include <boost/math/tools/roots.hpp>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+namespace gearpatch {
+namespace {
+
+double dot(const LinearForm& f, const GearState& x) {
+  return f.omega_p * x.omega_p + f.omega_s * x.omega_s + f.dphi * x.dphi;
+}
+
+/// A root of f between lo and hi, where f changes sign (TOMS 748, to a few ulps).
+template <class F>
+double root(F f, double lo, double hi, double flo, double fhi) {
+  std::uintmax_t iterations = 200;
+  boost::math::tools::eps_tolerance<double> tolerance(std::numeric_limits<double>::digits - 3);
+  const auto [a, b] = boost::math::tools::toms748_solve(f, lo, hi, flo, fhi, tolerance, iterations);
+  return 0.5 * (a + b);
+}
+
+}  // namespace
+
+ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment,
+                         double a, double b)
+    : model_(model), mode_(mode), segment_(segment), a_(a), b_(b) {
+  const GearState zero{}, rest = model.derivative(mode, zero);
+  const GearState unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  for (int j = 0; j < 3; ++j) {
+    const GearState d = model.derivative(mode, unit[j]);
+    columns_[j] = {d.omega_p - rest.omega_p, d.omega_s - rest.omega_s, d.dphi - rest.dphi};
+  }
+  const ModeDynamics d = model.dynamics(mode);
+  const double weight = d.inv_p + d.inv_s * d.gain_s;
+  if (d.coupled && weight > 0) {
+    kappa_ = weight * d.stiffness;
+    delta_ = weight * d.damping;
+  }
+  const double disc = kappa_ - 0.25 * delta_ * delta_;
+  // h'' has its zeros π/√disc apart; a window of half that holds at most one.
+  quarter_ = disc > 0 ? 0.5 * std::numbers::pi / std::sqrt(disc) : INFINITY;
+}
+
+ModeExtrema::Point ModeExtrema::at(double t) const {
+  Point p{t, segment_.state_at(t), {}};
+  p.rate = model_.derivative(mode_, p.state);
+  return p;
+}
+
+/// The search for the largest σ·f on [a, b] above the peak found so far.
+struct ModeExtrema::Search {
+  const ModeExtrema& m;
+  const LinearForm& f;
+  double sign;
+  Extremum& peak;
+  LinearForm r2{}, r3{};  ///< f's linear part times the mode's matrix, once and twice
+
+  Search(const ModeExtrema& m, const LinearForm& f, double sign, Extremum& peak)
+      : m(m), f(f), sign(sign), peak(peak) {
+    const auto times_matrix = [&](const LinearForm& r) {
+      return LinearForm{dot(r, m.columns_[0]), dot(r, m.columns_[1]), dot(r, m.columns_[2]), 0};
+    };
+    r2 = times_matrix(f);
+    r3 = times_matrix(r2);
+  }
+
+  Values values(const Point& p) const {
+    return {sign * f(p.state), sign * dot(f, p.rate), sign * dot(r2, p.rate), sign * dot(r3, p.rate)};
+  }
+
+  void consider(const Point& p) const {
+    const double v = f(p.state);
+    if (std::abs(v) > std::abs(peak.value)) peak = {p.t, v};
+  }
+
+  /// sup σ·f on [p.t, end]: the line l0 + l1·t at its higher end plus the
+  /// bound on the free part, whose energy h'² + κ·h² never grows.
+  double upper_bound(const Point& p, double end) const {
+    if (!(m.kappa_ > 0)) return INFINITY;
+    const Values v = values(p);
+    const double h1 = -(v.g3 + m.delta_ * v.g2) / m.kappa_;
+    const double h = -(v.g2 + m.delta_ * h1) / m.kappa_;
+    const double line = v.g - h, slope = v.g1 - h1;
+    const double radius = std::sqrt(h * h + h1 * h1 / m.kappa_);
+    const double bound = std::max(line, line + slope * (end - p.t)) + radius;
+    // Within rounding of the peak found: nothing to gain there.
+    return bound - 1e-12 * (std::abs(line) + radius);
+  }
+
+  void search(const Point& a, const Point& b) const {
+    if (upper_bound(a, b.t) <= std::abs(peak.value)) return;
+    if (b.t - a.t <= m.quarter_) return leaf(a, b);
+    const double mid = a.t + 0.5 * (b.t - a.t);
+    if (!(mid > a.t && mid < b.t)) return leaf(a, b);
+    const Point c = m.at(mid);
+    // The more promising half first, so that the other is more often left out.
+    if (upper_bound(c, b.t) > upper_bound(a, c.t)) {
+      search(c, b);
+      search(a, c);
+    } else {
+      search(a, c);
+      search(c, b);
+    }
+  }
+
+  /// At most one zero of g'' here: g' is monotone on each side of it, and a
+  /// maximum of σ·f is where σ·f' turns from positive to negative.
+  void leaf(const Point& a, const Point& b) const {
+    consider(a);
+    consider(b);
+    const Values va = values(a), vb = values(b);
+    auto slope = [&](double t) { return values(m.at(t)).g1; };
+    auto curvature = [&](double t) { return values(m.at(t)).g2; };
+    auto piece = [&](const Point& lo, const Values& vlo, const Point& hi, const Values& vhi) {
+      if (vlo.g1 > 0 && vhi.g1 < 0) consider(m.at(root(slope, lo.t, hi.t, vlo.g1, vhi.g1)));
+    };
+    if ((va.g2 < 0 && vb.g2 > 0) || (va.g2 > 0 && vb.g2 < 0)) {
+      const Point c = m.at(root(curvature, a.t, b.t, va.g2, vb.g2));
+      const Values vc = values(c);
+      piece(a, va, c, vc);
+      piece(c, vc, b, vb);
+    } else {
+      piece(a, va, b, vb);
+    }
+  }
+};
+
+void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
+  const Point a = at(a_), b = at(b_);
+  Search(*this, f, 1, peak).search(a, b);
+  Search(*this, f, -1, peak).search(a, b);
+}
+
+}  // namespace gearpatch

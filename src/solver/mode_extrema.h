@@ -1,0 +1,49 @@
+#pragma once
+#include "model/gear_model.h"
+#include "solver/segment.h"
+
+namespace gearpatch {
+
+/// A signal's peak: where |value| is largest, and the value there (signed).
+struct Extremum {
+  double t = 0;
+  double value = 0;
+};
+
+/// The solution of one mode on one interval [a, b] of its segment, searched
+/// for the extrema of linear forms of the state (φ̇p, φ̇s, Δφ, M0) where their
+/// derivative vanishes, not on any output grid. Within a mode every such
+/// form is l0 + l1·t + h(t), h a free damped oscillation, so g' changes
+/// monotonically between the zeros of g'' (at most one per half period);
+/// stretches of many periods are bisected and left out where the decay
+/// bound of h shows they cannot hold a larger value.
+class ModeExtrema {
+ public:
+  ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment, double a, double b);
+
+  /// Raises `peak` to the largest |f| on [a, b], with its time, if that is larger.
+  void raise(const LinearForm& f, Extremum& peak) const;
+
+ private:
+  struct Point {
+    double t;
+    GearState state, rate;
+  };
+  /// f and its first three derivatives at one point.
+  struct Values {
+    double g, g1, g2, g3;
+  };
+  struct Search;
+
+  Point at(double t) const;
+  double quarter_period() const { return quarter_; }
+
+  const GearModel& model_;
+  const Mode& mode_;
+  const Segment& segment_;
+  double a_, b_;
+  GearState columns_[3];  ///< the linear part of the mode's derivative, column by column
+  double kappa_ = 0, delta_ = 0, quarter_ = 0;
+};
+
+}  // namespace gearpatch

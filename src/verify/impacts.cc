@@ -1,0 +1,143 @@
+#include "verify/impacts.h"
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+
+namespace gearpatch::verify {
+namespace {
+
+/// One contact, from flanks meeting to parting (or the end of the run).
+struct Contact {
+  double begin = 0, end = 0;
+  double depth = 0, peak = 0;
+  double restitution = -1;
+  bool released = false;  ///< false: still in contact when the run ends, its peak perhaps not reached
+};
+
+/// The reference's contacts as the solver recorded them: depth, peak torque
+/// and restitution from the closed form of each mode, not from the grid.
+std::vector<Contact> reference_contacts(const Trajectory& ref, double eps, bool free) {
+  std::vector<Contact> out;
+  for (const ContactRecord& r : ref.contacts) {
+    if (!r.impact) continue;  // the run started in contact: no impact to match
+    Contact c{r.start, r.end, std::abs(r.twist.value) - eps, std::abs(r.torque.value)};
+    c.released = r.released;
+    if (free && r.released && std::isfinite(r.restitution)) c.restitution = r.restitution;
+    out.push_back(c);
+  }
+  return out;
+}
+
+double value_at(const std::vector<double>& t, const std::vector<double>& y, double x) {
+  const auto hi = std::upper_bound(t.begin(), t.end(), x);
+  if (hi == t.begin()) return y.front();
+  if (hi == t.end()) return y.back();
+  const std::size_t j = hi - t.begin(), i = j - 1;
+  return t[j] > t[i] ? y[i] + (x - t[i]) / (t[j] - t[i]) * (y[j] - y[i]) : y[j];
+}
+
+/// The circuit's contacts: from each outward crossing of |Δφ| = ε to the next inward one.
+std::vector<Contact> circuit_contacts(const CircuitTrace& c, double eps, bool free) {
+  const auto& t = c.t;
+  const auto& x = c.signals.at(Signal::dphi);
+  const auto& m = c.signals.at(Signal::m0);
+  std::vector<Contact> out;
+  bool inside = false;
+  for (std::size_t i = 1; i < x.size(); ++i) {
+    const double a = std::abs(x[i - 1]) - eps, b = std::abs(x[i]) - eps;
+    const double crossing = t[i - 1] + (t[i] - t[i - 1]) * (a / (a - b));
+    if (!inside && a <= 0 && b > 0) {
+      out.push_back({crossing, t.back()});
+      inside = true;
+    } else if (inside && a > 0 && b <= 0) {
+      out.back().end = crossing;
+      out.back().released = true;
+      inside = false;
+    }
+    if (inside) {
+      out.back().depth = std::max(out.back().depth, b);
+      out.back().peak = std::max(out.back().peak, std::abs(m[i]));
+    }
+  }
+  if (!free) return out;
+  const auto& wp = c.signals.at(Signal::omega_p);
+  const auto& ws = c.signals.at(Signal::omega_s);
+  for (Contact& k : out) {
+    if (k.end >= t.back()) break;  // still in contact when the run ends
+    const double in = value_at(t, wp, k.begin) - value_at(t, ws, k.begin);
+    const double away = value_at(t, wp, k.end) - value_at(t, ws, k.end);
+    if (in != 0) k.restitution = -away / in;
+  }
+  return out;
+}
+
+bool frictionless_and_free(const GearParameters& p) {
+  return !p.primary_has_friction() && !p.secondary_has_friction() && p.drive_torque == 0 &&
+         p.load_torque == 0;
+}
+
+}  // namespace
+
+int ImpactMatch::missing() const {
+  return static_cast<int>(std::count_if(impacts.begin(), impacts.end(), [](const Impact& i) {
+    return i.reference >= 0 && i.circuit < 0 && !i.grazing;
+  }));
+}
+
+int ImpactMatch::extra() const {
+  return static_cast<int>(std::count_if(impacts.begin(), impacts.end(), [](const Impact& i) {
+    return i.reference < 0 && i.circuit >= 0 && !i.grazing;
+  }));
+}
+
+ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circuit, const GearModel& model,
+                          double grazing_depth) {
+  ImpactMatch out;
+  const double eps = model.parameters().half_backlash;
+  if (eps == 0) return out;
+  const bool free = frictionless_and_free(model.parameters());
+  const std::vector<Contact> ref = reference_contacts(reference, eps, free);
+  const std::vector<Contact> cir = circuit_contacts(circuit, eps, free);
+  out.circuit_count = static_cast<int>(cir.size());
+  // Nearest pairs first, each contact used once: a shallow contact on one
+  // side cannot take the partner of a real one nearby.
+  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < ref.size(); ++i)
+    for (std::size_t j = 0; j < cir.size(); ++j) pairs.emplace_back(std::abs(ref[i].begin - cir[j].begin), i, j);
+  std::sort(pairs.begin(), pairs.end());
+  std::vector<int> partner(ref.size(), -1);
+  std::vector<bool> taken(cir.size(), false);
+  for (const auto& [gap, i, j] : pairs)
+    if (partner[i] < 0 && !taken[j]) partner[i] = static_cast<int>(j), taken[j] = true;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    Impact m{ref[i].begin};
+    m.depth = ref[i].depth;
+    m.peak_reference = ref[i].peak;
+    m.restitution_reference = ref[i].restitution;
+    if (partner[i] >= 0) {
+      const Contact& c = cir[partner[i]];
+      m.circuit = c.begin;
+      m.depth = std::max(m.depth, c.depth);
+      m.peak_circuit = c.peak;
+      m.restitution_circuit = c.restitution;
+      m.released = ref[i].released && c.released;
+    } else {
+      m.grazing = m.depth <= grazing_depth;
+    }
+    out.impacts.push_back(m);
+  }
+  for (std::size_t j = 0; j < cir.size(); ++j)
+    if (!taken[j]) {
+      Impact m;
+      m.circuit = cir[j].begin;
+      m.depth = cir[j].depth;
+      m.peak_circuit = cir[j].peak;
+      m.restitution_circuit = cir[j].restitution;
+      m.grazing = m.depth <= grazing_depth;
+      out.impacts.push_back(m);
+    }
+  return out;
+}
+
+}  // namespace gearpatch::verify
