@@ -25,9 +25,8 @@ double root(F f, double lo, double hi, double flo, double fhi) {
 
 }  // namespace
 
-ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment,
-                         double a, double b)
-    : model_(model), mode_(mode), segment_(segment), a_(a), b_(b) {
+ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment)
+    : model_(model), mode_(mode), segment_(segment) {
   const GearState zero{}, rest = model.derivative(mode, zero);
   const GearState unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   for (int j = 0; j < 3; ++j) {
@@ -43,6 +42,12 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
   const double disc = kappa_ - 0.25 * delta_ * delta_;
   // h'' has its zeros π/√disc apart; a window of half that holds at most one.
   quarter_ = disc > 0 ? 0.5 * std::numbers::pi / std::sqrt(disc) : INFINITY;
+  start_.t = end_.t = std::numeric_limits<double>::quiet_NaN();
+}
+
+void ModeExtrema::walk(double a, double b) {
+  start_ = end_.t == a ? end_ : at(a);
+  end_ = b == a ? start_ : at(b);
 }
 
 ModeExtrema::Point ModeExtrema::at(double t) const {
@@ -107,8 +112,10 @@ struct ModeExtrema::Search {
     }
   }
 
-  /// At most one zero of g'' here: g' is monotone on each side of it, and a
-  /// maximum of σ·f is where σ·f' turns from positive to negative.
+  /// At most one zero of g'' here, so g' rises then falls or the other way
+  /// round: a maximum of σ·f is where σ·f' turns from positive to negative,
+  /// found between the ends when their slopes show one, else on each side of
+  /// the zero of g'' where the slope does not keep one sign.
   void leaf(const Point& a, const Point& b) const {
     consider(a);
     consider(b);
@@ -118,21 +125,20 @@ struct ModeExtrema::Search {
     auto piece = [&](const Point& lo, const Values& vlo, const Point& hi, const Values& vhi) {
       if (vlo.g1 > 0 && vhi.g1 < 0) consider(m.at(root(slope, lo.t, hi.t, vlo.g1, vhi.g1)));
     };
+    if (va.g1 > 0 && vb.g1 < 0) return piece(a, va, b, vb);  // exactly one turn from + to −
+    if (va.g1 < 0 && vb.g1 > 0) return;                       // the slope's one turn is a minimum
     if ((va.g2 < 0 && vb.g2 > 0) || (va.g2 > 0 && vb.g2 < 0)) {
       const Point c = m.at(root(curvature, a.t, b.t, va.g2, vb.g2));
       const Values vc = values(c);
       piece(a, va, c, vc);
       piece(c, vc, b, vb);
-    } else {
-      piece(a, va, b, vb);
     }
   }
 };
 
 void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
-  const Point a = at(a_), b = at(b_);
-  Search(*this, f, 1, peak).search(a, b);
-  Search(*this, f, -1, peak).search(a, b);
+  Search(*this, f, 1, peak).search(start_, end_);
+  Search(*this, f, -1, peak).search(start_, end_);
 }
 
 }  // namespace gearpatch

@@ -19,10 +19,16 @@ struct Extremum {
 /// bound of h shows they cannot hold a larger value.
 class ModeExtrema {
  public:
-  ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment, double a, double b);
+  /// For the segment of `mode`; walk() hands it the intervals in turn.
+  ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment);
+
+  /// Moves on to [a, b]; the state at a is reused from the last interval when it ended there.
+  void walk(double a, double b);
 
   /// Raises `peak` to the largest |f| on [a, b], with its time, if that is larger.
   void raise(const LinearForm& f, Extremum& peak) const;
+  const GearState& start_state() const { return start_.state; }
+  const GearState& end_state() const { return end_.state; }
 
  private:
   struct Point {
@@ -36,12 +42,11 @@ class ModeExtrema {
   struct Search;
 
   Point at(double t) const;
-  double quarter_period() const { return quarter_; }
 
   const GearModel& model_;
-  const Mode& mode_;
+  Mode mode_;
   const Segment& segment_;
-  double a_, b_;
+  Point start_, end_;  ///< at a and b
   GearState columns_[3];  ///< the linear part of the mode's derivative, column by column
   double kappa_ = 0, delta_ = 0, quarter_ = 0;
 };

@@ -23,6 +23,7 @@ void TrajectoryRecorder::sample(double t, const Mode& mode, const GearState& s) 
 
 void TrajectoryRecorder::event(const EventRecord& e) {
   out_.events.push_back(e);
+  extrema_.reset();  // a new segment follows
   if (out_.event_samples.size() < max_event_samples_)
     out_.event_samples.push_back(
         {e.t, e.after.omega_p, e.after.omega_s, e.after.dphi, model_.torque(e.mode_after, e.after)});
@@ -48,7 +49,9 @@ void TrajectoryRecorder::event(const EventRecord& e) {
 }
 
 void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Segment& segment) {
-  const ModeExtrema extrema(model_, mode, segment, a, b);
+  if (!extrema_) extrema_.emplace(model_, mode, segment);
+  ModeExtrema& extrema = *extrema_;
+  extrema.walk(a, b);
   SignalPeaks& run = out_.peaks;
   extrema.raise(speed_primary, run.omega_p);
   extrema.raise(speed_secondary, run.omega_s);
@@ -57,7 +60,7 @@ void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Se
     c.start = a;
     c.side = mode.contact == Contact::positive ? 1 : -1;
     c.impact = false;
-    c.at_impact = segment.state_at(a);
+    c.at_impact = extrema.start_state();
     c.restitution = std::numeric_limits<double>::quiet_NaN();
     out_.contacts.push_back(c);
     in_contact_ = true;
@@ -74,7 +77,7 @@ void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Se
   raise(run.dphi, c.twist);
   raise(run.m0, c.torque);
   c.end = b;
-  c.at_release = segment.state_at(b);
+  c.at_release = extrema.end_state();
 }
 
 std::vector<Sample> Trajectory::output() const {

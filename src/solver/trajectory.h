@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -95,6 +96,7 @@ class TrajectoryRecorder : public Observer {
   Trajectory& out_;
   std::size_t max_event_samples_;
   bool in_contact_ = false;
+  std::optional<ModeExtrema> extrema_;  ///< of the segment being walked; reset at each event
 };
 
 }  // namespace gearpatch
