@@ -2,10 +2,22 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <catch2/catch.hpp>
 #include <sys/wait.h>
 
 namespace gearpatch::testing {
+
+TempFolder::TempFolder(const std::string& purpose) {
+  std::string pattern = (std::filesystem::temp_directory_path() / ("gearpatch-test-" + purpose + "-XXXXXX")).string();
+  REQUIRE(mkdtemp(pattern.data()) != nullptr);
+  path = pattern;
+}
+
+TempFolder::~TempFolder() {
+  std::error_code ec;
+  std::filesystem::remove_all(path, ec);
+}
 
 int run_command(const std::string& command, std::string& output) {
   output.clear();

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the tests: scenes built from text, example scene paths,
 // running the gearpatch binary.
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -61,6 +62,17 @@ inline constexpr const char* rc_step_deck =
 /// turns against the engagement (φ̇s·Δφ' >= 0); returns how many samples were
 /// in contact, so a caller can check the lock was put to the test.
 int check_never_against_engagement(const GearModel& model, const Trajectory& trajectory);
+
+/// A fresh private folder (mkdtemp) for one test, removed with all it holds
+/// at the end; `purpose` goes into its name.
+struct TempFolder {
+  explicit TempFolder(const std::string& purpose);
+  ~TempFolder();
+  TempFolder(const TempFolder&) = delete;
+  TempFolder& operator=(const TempFolder&) = delete;
+  std::string operator/(const std::string& name) const { return (path / name).string(); }
+  std::filesystem::path path;
+};
 
 /// Runs a shell command; returns its exit status and puts stdout+stderr in `output`.
 int run_command(const std::string& command, std::string& output);

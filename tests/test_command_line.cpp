@@ -21,18 +21,8 @@ namespace {
 const std::string kBinary = GEARPATCH_BINARY;
 
 /// A fresh folder that sees the example scenes as scenes/, removed afterwards.
-struct WorkDir {
-  fs::path path;
-  WorkDir() {
-    std::string pattern = (fs::temp_directory_path() / "gearpatch-test-cli-XXXXXX").string();
-    REQUIRE(mkdtemp(pattern.data()) != nullptr);
-    path = pattern;
-    fs::create_directory_symlink(testing::source_path("scenes"), path / "scenes");
-  }
-  ~WorkDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+struct WorkDir : testing::TempFolder {
+  WorkDir() : TempFolder("cli") { fs::create_directory_symlink(testing::source_path("scenes"), path / "scenes"); }
   /// Runs `arguments` with the binary from this folder.
   int run(const std::string& arguments, std::string& output) const {
     return testing::run_command("cd " + path.string() + " && " + kBinary + " " + arguments, output);

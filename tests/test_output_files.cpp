@@ -23,18 +23,8 @@ using namespace gearpatch;
 
 namespace {
 
-struct TestDir {
-  fs::path path;
-  TestDir() {
-    std::string pattern = (fs::temp_directory_path() / "gearpatch-test-out-XXXXXX").string();
-    REQUIRE(mkdtemp(pattern.data()) != nullptr);
-    path = pattern;
-  }
-  ~TestDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
+struct TestDir : testing::TempFolder {
+  TestDir() : TempFolder("out") {}
   /// The names in the folder, sorted: temporaries would show here.
   std::string listing() const {
     std::set<std::string> names;

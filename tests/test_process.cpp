@@ -35,17 +35,8 @@ extern char** environ;
 namespace {
 
 /// A fresh folder of the test's own, removed at the end.
-struct TestDir {
-  fs::path path;
-  TestDir() {
-    std::string pattern = (fs::temp_directory_path() / "gearpatch-test-process-XXXXXX").string();
-    REQUIRE(mkdtemp(pattern.data()) != nullptr);
-    path = pattern;
-  }
-  ~TestDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
+struct TestDir : testing::TempFolder {
+  TestDir() : TempFolder("process") {}
 };
 
 void write_script(const fs::path& file, const std::string& body) {
