@@ -130,16 +130,26 @@ TEST_CASE("a signal to verify kills ngspice's group, removes its scratch folder 
   }
 }
 
-TEST_CASE("run_child passes arguments without a shell and reports exit codes and signals", "[common]") {
-  TestDir test;
-  write_script(test.path / "tool", "echo \"$1|$2|$LC_NUMERIC\"; pwd >&2; exit 7");
+namespace {
+
+/// A child "tool" in the test's folder running `body`, its output in files there.
+ChildSpec tool_spec(const TestDir& test, const std::string& body) {
+  write_script(test.path / "tool", body);
   ChildSpec spec;
   spec.name = "tool";
   spec.program = (test.path / "tool").string();
-  spec.args = {"a b; echo injected", "$HOME"};
   spec.directory = test.path;
   spec.stdout_file = test.path / "out.txt";
   spec.stderr_file = test.path / "err.txt";
+  return spec;
+}
+
+}  // namespace
+
+TEST_CASE("run_child passes arguments without a shell and reports exit codes and signals", "[common]") {
+  TestDir test;
+  ChildSpec spec = tool_spec(test, "echo \"$1|$2|$LC_NUMERIC\"; pwd >&2; exit 7");
+  spec.args = {"a b; echo injected", "$HOME"};
   const ChildExit exit = run_child(spec);
   CHECK(exit.exit_code == 7);
   CHECK_FALSE(exit.signal);
@@ -159,13 +169,7 @@ TEST_CASE("run_child passes arguments without a shell and reports exit codes and
 
 TEST_CASE("a huge timeout is no instant timeout; nonsense timeouts are refused", "[common]") {
   TestDir test;
-  write_script(test.path / "tool", "exit 0");
-  ChildSpec spec;
-  spec.name = "tool";
-  spec.program = (test.path / "tool").string();
-  spec.directory = test.path;
-  spec.stdout_file = test.path / "out.txt";
-  spec.stderr_file = test.path / "err.txt";
+  ChildSpec spec = tool_spec(test, "exit 0");
   for (double seconds : {1e12, 1e300, std::numeric_limits<double>::infinity()}) {
     spec.timeout = timeout_from_seconds(seconds);
     CHECK(run_child(spec).exit_code == 0);

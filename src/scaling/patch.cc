@@ -264,16 +264,6 @@ void check_finite(const Patch& patch) {
   }
 }
 
-PeakRun run_reference(const ScalingInput& s) {
-  PeakRun run;
-  try {
-    run.peaks = simulate_peaks(s);
-  } catch (const Error& e) {
-    run.failure = e;
-  }
-  return run;
-}
-
 /// make_patch, with the reference run given or, when the peaks are checked, made here.
 Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given) {
   const GearParameters& p = s.gear;

@@ -90,6 +90,16 @@ PhysicalPeaks simulate_peaks(const ScalingInput& in, const std::vector<Output>& 
   return peaks;
 }
 
+PeakRun run_reference(const ScalingInput& input, const std::vector<Output>& more) {
+  PeakRun run;
+  try {
+    run.peaks = simulate_peaks(input, more);
+  } catch (const Error& e) {
+    run.failure = e;
+  }
+  return run;
+}
+
 PeakFractions peak_fractions(const PhysicalPeaks& x, const Maxima& m, const GearParameters& p) {
   PeakFractions f;
   f.scaled["Wp"] = x.omega_p / m.speed_primary;

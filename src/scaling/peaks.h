@@ -39,6 +39,10 @@ struct PeakRun {
   std::optional<Error> failure;
 };
 
+/// simulate_peaks with its failure kept instead of thrown, so that a caller
+/// can still report what came before it (each of `more` as in simulate_peaks).
+PeakRun run_reference(const ScalingInput& input, const std::vector<Output>& more = {});
+
 /// Each signal's peak as a fraction of its scale (machine units).
 /// `scaled`: the signals that own a maximum (Wp, Ws, DW, X, X', m, drive);
 /// `bounded`: outputs fixed by construction or by another signal's scale

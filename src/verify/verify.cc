@@ -103,12 +103,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   const GearModel model(input.gear);
   r.gear = input.gear;
   TrajectoryRecorder recorder(model, r.reference);
-  PeakRun run;
-  try {
-    run.peaks = simulate_peaks(input, {{reference_step(scene, options), recorder}});
-  } catch (const Error& e) {
-    run.failure = e;
-  }
+  const PeakRun run = run_reference(input, {{reference_step(scene, options), recorder}});
   PatchOptions patch_options;
   patch_options.comparator_offset = circuit::comparator_offset(options.level);
   patch_options.autoscale = options.autoscale;
