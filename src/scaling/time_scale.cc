@@ -10,7 +10,7 @@
 namespace gearpatch {
 
 double comfortable_low(const MachineProfile& m) {
-  return 0.1 * *std::min_element(m.weights.begin(), m.weights.end());
+  return m.smallest_setting * *std::min_element(m.weights.begin(), m.weights.end());
 }
 
 double comfortable_high(const MachineProfile& m) {
