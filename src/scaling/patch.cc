@@ -229,9 +229,9 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
                              "(1/(n·k0·β) = {:.3g} s)",
                              ts.beta, strongest * k0, 100 * lock_catch_fraction, 1 / (strongest * k0 * ts.beta));
     for (const auto& c : t.entries)
-      if (c.kind == CoefficientKind::integrator && c.name != Setting::alpha_lock && c.rate / ts.beta / k0 < input.machine.smallest_setting)
+      if (c.kind == CoefficientKind::integrator && c.name != Setting::alpha_lock && c.rate / ts.beta / k0 < s.machine.smallest_setting)
         ts.warnings.push_back(fmt::format("{} = {:.3g} at β = {:g} is below {:g}: hard to set precisely",
-                                          to_string(c.name), c.rate / ts.beta / k0, ts.beta, input.machine.smallest_setting));
+                                          to_string(c.name), c.rate / ts.beta / k0, ts.beta, s.machine.smallest_setting));
   } else if (explicit_beta && ts.beta < needed) {
     ts.warnings.push_back(fmt::format(
         "at β = {:g} the self-locking reaction needs {:.3g} s to catch the load ({:.2g} % of the run): "
