@@ -96,21 +96,26 @@ std::size_t SweepTable::failed() const {
 }
 
 std::string to_text(const SweepTable& t) {
-  std::string out = fmt::format("{:<34} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  {}\n", "point",
-                                "impacts", "k achieved", "peak M0", "peak twist", "settled", "mean", "E lost",
-                                "p lost", t.study.options.verify ? "verify" : "");
-  out += fmt::format("{:<34} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}\n", "", "", "(mean)", "N·m",
-                     "rad", "s", "rad/s", "J", "N·m·s");
+  std::size_t width = 5;
+  for (const runs::JobOutcome& o : t.points) width = std::max(width, o.label.size());
+  const auto row = [&](const std::string& point, const std::vector<std::string>& cells) {
+    std::string line = fmt::format("{:<{}}", point, width);
+    for (const std::string& c : cells) line += fmt::format(" {:>10}", c);
+    while (!line.empty() && line.back() == ' ') line.pop_back();
+    return line + "\n";
+  };
+  std::string out = row("point", {"impacts", "k achieved", "peak M0", "peak twist", "settled", "mean", "E lost",
+                                  "p lost", t.study.options.verify ? "verify" : ""});
+  out += row("", {"", "(mean)", "N·m", "rad", "s", "rad/s", "J", "N·m·s"});
   for (const runs::JobOutcome& o : t.points) {
     if (!o.result) {
-      out += fmt::format("{:<34} FAILED\n", o.label);
+      out += row(o.label, {"FAILED"});
       continue;
     }
     const PointFigures f = figures_from_json(o.result->at("figures"));
-    out += fmt::format("{:<34} {:>7} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10} {:>10}  {}\n", o.label, f.impacts,
-                       number(mean(f.restitution)), number(f.peak_torque), number(f.peak_twist),
-                       number(f.settling_time), number(f.momentum_mean), number(f.energy_lost),
-                       number(f.momentum_lost), verdict_text(o));
+    out += row(o.label, {std::to_string(f.impacts), number(mean(f.restitution)), number(f.peak_torque),
+                         number(f.peak_twist), number(f.settling_time), number(f.momentum_mean),
+                         number(f.energy_lost), number(f.momentum_lost), verdict_text(o)});
   }
   out += fmt::format("{} points, {} failed\n", t.points.size(), t.failed());
   for (const runs::JobOutcome& o : t.points)
