@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "common/atomic_file.h"
@@ -193,4 +194,33 @@ TEST_CASE("the figures command redraws Bild 5a-c and 6a-c with the scenes' close
       CHECK(f.at("figures").at("energy_lost").get<double>() > 0);
     }
   }
+}
+
+TEST_CASE("the --help examples of sweep, merge and figures run as written", "[sweep]") {
+  testing::TempFolder dir("sweep-help");
+  fs::create_directory_symlink(testing::source_path("scenes"), dir.path / "scenes");
+  const auto run = [&](const std::string& command, std::string& output) {
+    return testing::run_command("cd " + dir.path.string() + " && " + command + " 2>&1", output);
+  };
+  std::string help, output;
+  REQUIRE(run(kBinary + " --help", help) == 0);
+  for (const std::string& command : {"sweep", "merge", "figures"}) CHECK_THAT(help, Catch::Contains("  " + command + " "));
+  for (const std::string& command : {"sweep", "merge", "figures"}) {
+    REQUIRE(run(kBinary + " " + command + " --help", help) == 0);
+    const std::string examples = help.substr(help.rfind("\nexamples:\n") + 11);
+    std::istringstream lines(examples);
+    int ran = 0;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("  gearpatch ", 0) != 0) continue;  // the GNU Parallel line runs below
+      INFO(line);
+      if (line.find("--job-list runs/c") != std::string::npos) fs::remove_all(dir.path / "runs");
+      CHECK(run(kBinary + line.substr(11), output) == 0);
+      if (line.find("--job-list runs/c") != std::string::npos)
+        CHECK(run("parallel --will-cite -S : < runs/c/jobs.txt", output) == 0);
+      ++ran;
+    }
+    CHECK(ran > 0);
+  }
+  CHECK(is_png(dir / "docs/figures/bild6c.png"));
+  CHECK(read_file(dir / "c.csv").find("\n3,200,") != std::string::npos);
 }

@@ -18,7 +18,11 @@ int run_merge(const std::vector<std::string>& args) {
                        "jobs were run: GNU Parallel, a Slurm array, by hand) and writes the same\n"
                        "table, CSV, JSON and plots as the sweep itself. A job without a result is\n"
                        "counted and named. Exit status as sweep's.",
-                       options, {"gearpatch merge runs/c --csv c.csv --plot c.png"}, vm))
+                       options,
+                       {"gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:4 --job-list runs/c",
+                        "parallel -S : < runs/c/jobs.txt   # ':' is this machine; --sshloginfile FILE for hosts",
+                        "gearpatch merge runs/c --csv c.csv --plot c.png"},
+                       vm))
     return 0;
   const runs::RunFolder folder(single_file(vm, "merge", "RUNDIR"));
   const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };

@@ -74,8 +74,8 @@ int run_sweep(const std::vector<std::string>& args) {
                        {"gearpatch sweep scenes/bild5b.ini --set gear.restitution=0:1:5 --plot k.png --csv k.csv",
                         "gearpatch sweep scenes/bild6a.ini --set friction.bearing_secondary=log:1e-3:1:7 "
                         "--set gear.restitution=0.5,1 --figures-plot friction.svg",
-                        "gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:50 --job-list runs/c && "
-                        "parallel --sshloginfile hosts < runs/c/jobs.txt && gearpatch merge runs/c"},
+                        "gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:4 --job-list runs/c",
+                        "parallel --sshloginfile HOSTS < runs/c/jobs.txt   # then: gearpatch merge runs/c"},
                        vm))
     return 0;
   const sweep::SweepStudy study = study_from_options(vm);
