@@ -85,7 +85,7 @@ int run_sweep(const std::vector<std::string>& args) {
     return 0;
   }
   if (vm.count("result")) throw Error("--result is for --point");
-  sweep::check_points(study);  // every bad key or value refused before anything runs
+  sweep::check_points(study, single_file(vm, "sweep"));  // every bad key or value refused before anything runs
   const std::vector<runs::Job> jobs = sweep::sweep_jobs(study);
   if (vm.count("job-list")) {
     const runs::RunFolder folder(vm["job-list"].as<std::string>());

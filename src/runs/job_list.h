@@ -10,7 +10,8 @@ namespace gearpatch::runs {
 
 /// One run of a study (a sweep point, a Monte Carlo draw): a gearpatch
 /// invocation that writes its result as JSON to the path it is given. The
-/// same command runs in the local pool, under GNU Parallel or in a Slurm array.
+/// same command runs in the local pool, under GNU Parallel or in a Slurm array;
+/// whatever makes it reproducible (the point's index, a draw's seed) is in argv.
 struct Job {
   std::string label;              ///< for progress and failures: "gear.restitution=0.25"
   std::vector<std::string> argv;  ///< the program and its arguments, without the result path

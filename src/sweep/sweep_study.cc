@@ -45,9 +45,9 @@ SweepStudy study_from_json(const nlohmann::json& j) {
   }
 }
 
-void check_points(const SweepStudy& study) {
-  const std::string text = read_file(study.scene_path);
-  for (const Assignment& point : study.points()) point_scene(text, study.scene_path, point);
+void check_points(const SweepStudy& study, const std::string& source) {
+  const std::string text = read_file(source);
+  for (const Assignment& point : study.points()) point_scene(text, source, point);
 }
 
 std::vector<runs::Job> sweep_jobs(const SweepStudy& study) {

@@ -30,8 +30,9 @@ SweepStudy study_from_json(const nlohmann::json& study);
 std::vector<Signal> parse_signals(const std::string& list);
 
 /// Reads the scene and every point's scene: any bad key or value refuses the
-/// sweep with the reader's file:line: key message before anything runs.
-void check_points(const SweepStudy& study);
+/// sweep with the reader's file:line: key message, the file named as `source`
+/// (the path as the user wrote it), before anything runs.
+void check_points(const SweepStudy& study, const std::string& source);
 
 /// One job per point: `gearpatch sweep SCENE --set ... --point I`, with the
 /// result path added by the run folder.
