@@ -208,7 +208,10 @@ class Allocator {
           a_.notes.push_back(fmt::format("{} = 1: a plain wire into {} (weight {})", to_string(*in.potentiometer),
                                          target.label, in.weight));
       }
-      if (!in.switched_by.empty()) wire.switch_label = label(in.switched_by);
+      if (!in.switched_by.empty()) {
+        wire.switch_label = label(in.switched_by);
+        wire.switch_node = in.switched_by;
+      }
       a_.connections.push_back(wire);
     }
     for (const auto& [weight, n] : needed)

@@ -33,6 +33,7 @@ struct Connection {
   std::string potentiometer_label;       ///< "COEFF3"; empty when a setting of 1 became a wire
   double setting = 1, loaded_setting = 1;
   std::string switch_label;              ///< the comparator whose switch it passes, or empty
+  std::string switch_node;               ///< the circuit node that drives that switch
   std::string to_instance, to_label;     ///< the amplifier ("int_p") and its element ("INT1")
   int input = 0;                         ///< the circuit's input index, 1-based
   int weight = 1;

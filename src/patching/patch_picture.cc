@@ -107,7 +107,7 @@ std::string to_dot(const Allocation& a, const circuit::Circuit& c) {
   }
   for (const InitialCondition& ic : a.initial_conditions)
     dot += fmt::format("  {} [shape=plaintext, label={}];\n  {} -> {} [style=dotted, label=\"IC\"];\n",
-                       dot_string("ic_" + ic.node), dot_string(fmt::format("IC {:+} MU", ic.value)), dot_string("ic_" + ic.node),
+                       dot_string("ic_" + ic.node), dot_string("IC " + format_number(ic.value) + " MU"), dot_string("ic_" + ic.node),
                        dot_string(driver.at(ic.node)));
   return dot + "}\n";
 }
