@@ -88,19 +88,22 @@ std::string to_dot(const Allocation& a, const circuit::Circuit& c) {
   for (const Connection& w : a.connections) in_connections.insert(w.potentiometer_label);
   for (const PotentiometerUse& p : a.potentiometers)
     if (!in_connections.count(p.label))
-      dot += fmt::format("  {} [shape=circle, label={}];\n", dot_string(p.label),
-                         dot_string(fmt::format("{}\n{}", p.label, format_number(p.setting)))) +
+      dot += fmt::format("  {} [shape=circle, fixedsize=true, width=0.9, label={}];\n", dot_string(p.label),
+                         dot_string(fmt::format("{}\n{:.5f}", p.label, p.setting))) +
              fmt::format("  {} [shape=plaintext, label={}];\n", dot_string("use_" + p.label), dot_string(p.what)) +
              fmt::format("  {} -> {} [style=dotted];\n", dot_string(p.label), dot_string("use_" + p.label));
   for (const Connection& w : a.connections) {
     std::string from = driver.at(w.from_node);
     if (!w.potentiometer_label.empty()) {
-      dot += fmt::format("  {} [shape=circle, label={}];\n", dot_string(w.potentiometer_label),
-                         dot_string(fmt::format("{}\n{}", w.potentiometer_label, format_number(w.setting))));
+      dot += fmt::format("  {} [shape=circle, fixedsize=true, width=0.9, label={}];\n", dot_string(w.potentiometer_label),
+                         dot_string(fmt::format("{}\n{:.5f}", w.potentiometer_label, w.setting)));
       dot += fmt::format("  {} -> {};\n", dot_string(from), dot_string(w.potentiometer_label));
       from = w.potentiometer_label;
     }
     const std::string sw = w.switch_label.empty() ? "" : ", switch " + w.switch_label;
+    if (!w.switch_node.empty())  // the comparator that opens and closes this path
+      dot += fmt::format("  {} -> {} [style=dotted, arrowhead=odot, label={}];\n", dot_string(driver.at(w.switch_node)),
+                         dot_string(w.to_instance), dot_string(fmt::format("switches {}", w.number)));
     dot += fmt::format("  {} -> {} [label={}{}];\n", dot_string(from), dot_string(w.to_instance),
                        dot_string(fmt::format("{}: ×{}{}", w.number, w.weight, sw)),
                        w.switch_label.empty() ? "" : ", style=dashed");
