@@ -128,6 +128,8 @@ TEST_CASE("a bad profile is refused with its file, line and key", "[machine]") {
              Catch::StartsWith("my.ini:2: functions.dead_zone = summer + 2 triode: 'triode' is no element"));
   CHECK_THAT(profile_error("\n[diode]\ncolour = red\n"), Catch::StartsWith("my.ini:3: diode.colour: unknown key"));
   CHECK_THAT(profile_error("[diode]\ncount = 1\ncount = 2\n"), Catch::StartsWith("my.ini:3: diode.count is given twice"));
+  CHECK_THAT(profile_error("[amplifier]\noffset_sign = negative\n"),
+             Catch::StartsWith("my.ini:2: amplifier.offset_sign = negative: must be random or positive"));
   CHECK_THAT(profile_error("[potentiometer]\nbuffered = maybe\n"),
              Catch::StartsWith("my.ini:2: potentiometer.buffered = maybe: must be true or false"));
 }

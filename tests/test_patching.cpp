@@ -11,6 +11,7 @@
 
 #include "circuit/netlist.h"
 #include "common/atomic_file.h"
+#include "spice/simulator.h"
 #include "machine/machine_file.h"
 #include "patching/machine_patch.h"
 #include "patching/patch_picture.h"
@@ -241,4 +242,33 @@ TEST_CASE("gearpatch patch writes the sheet, JSON and picture together", "[patch
   CHECK(testing::run_command(std::string(GEARPATCH_BINARY) + " patch " + testing::source_path("scenes/bild5c.ini") +
                                  " --machine the-analog-thing --picture " + (dir / "s.gif"),
                              output) == 2);
+}
+
+TEST_CASE("the hardware deck on THE ANALOG THING is built from its profile, and ngspice runs it", "[patching]") {
+  const Patch p = patch_of("bild5b", "the-analog-thing");
+  const circuit::Circuit c = circuit::build_circuit(p, circuit::Level::hardware);
+  const std::string deck = circuit::render_netlist(c);
+  CHECK_THAT(deck, Catch::Contains("Cint sj out 1e-09"));        // 1 nF at 1 MΩ: k0 = 1000
+  CHECK_THAT(deck, Catch::Contains("Rin_in1 in1 sj 1e+06"));     // weight 1
+  CHECK_THAT(deck, Catch::Contains("Rin_in1 in1 sj 1e+05"));     // weight 10
+  CHECK_THAT(deck, Catch::Contains("Rtop in w {max(1e+05*"));     // 100 kΩ potentiometers …
+  CHECK_THAT(deck, Catch::Contains("Ebuf out 0 w 0 1"));          // … with a follower on the wiper
+  CHECK_THAT(deck, Catch::Contains("supplies +-12 V"));
+  CHECK_THAT(deck, Catch::Contains("ron=100"));                   // its comparator switches
+  CHECK_THAT(deck, Catch::Contains("Vos inp ip 0.001"));          // TL074H: 1 mV …
+  CHECK_THAT(deck, Catch::Contains("Xamp 0 sj out gp_opamp"));    // … of either sign, per amplifier
+  CHECK_THAT(deck, Catch::Contains("Xamp nref sj out gp_opamp"));
+  CHECK_THAT(deck, Catch::Contains("Vflip nref 0 0.002"));
+  // buffered: the dial is the setting itself, no loaded setting
+  for (const auto& [name, dial] : c.dial_settings)
+    for (const auto& [param, value] : c.parameters)
+      if (param == name) CHECK(dial == value);
+  // the generic machine keeps the unbuffered divider and positive offsets (the golden decks)
+  const std::string generic = circuit::render_netlist(circuit::build_circuit(patch_of("bild5b", "generic"),
+                                                                             circuit::Level::hardware));
+  CHECK_THAT(generic, !Catch::Contains("Ebuf") && !Catch::Contains("nref"));
+  auto ngspice = spice::make_batch_ngspice();
+  const spice::Vectors v = ngspice->run(deck, {});
+  CHECK(v.at("time").back() == Approx(p.beta * p.duration).epsilon(1e-9));
+  CHECK(std::abs(v.at("v(wp)").front() / 10 - 1) < 0.01);  // IC: the primary starts at 1 MU
 }

@@ -45,7 +45,8 @@ std::map<std::string, std::string> profile_keys() {
       {"comparator.switch_resistance", "ohms of a closed switch"},
       {"amplifier.model", "the amplifier's name"},
       {"amplifier.offset", "typical input offset, V"},
-      {"amplifier.offset_spread", "one standard deviation of the offset, V (random sign)"},
+      {"amplifier.offset_spread", "one standard deviation of the offset, V"},
+      {"amplifier.offset_sign", "random (a sign per amplifier) or positive"},
       {"amplifier.gain", "open-loop gain, V/V"},
       {"amplifier.bandwidth", "gain-bandwidth product, Hz"},
       {"amplifier.slew", "slew rate, V/s"},
@@ -256,8 +257,8 @@ void read_elements(const ProfileReader& r, MachineProfile& m) {
   m.potentiometer_resistance = r.number("potentiometer.resistance", m.potentiometer_resistance, 10, 1e8);
   m.potentiometers_buffered = r.boolean("potentiometer.buffered", m.potentiometers_buffered);
   m.potentiometer_resolution = r.number("potentiometer.resolution", m.potentiometer_resolution, 1e-7, 0.1);
-  m.comparator_hysteresis = r.number("comparator.hysteresis", m.comparator_hysteresis, 0, 0.5);
-  m.switch_resistance = r.number("comparator.switch_resistance", m.switch_resistance, 0, 1e6);
+  m.comparator_hysteresis = r.number("comparator.hysteresis", m.comparator_hysteresis, 1e-6, 0.5);
+  m.switch_resistance = r.number("comparator.switch_resistance", m.switch_resistance, 1e-3, 1e6);
 }
 
 void read_amplifier_and_run(const ProfileReader& r, MachineProfile& m) {
@@ -265,6 +266,11 @@ void read_amplifier_and_run(const ProfileReader& r, MachineProfile& m) {
   if (r.has("amplifier.model")) a.name = r.raw("amplifier.model");
   a.offset_volts = r.number("amplifier.offset", a.offset_volts, 0, 1);
   a.offset_spread_volts = r.number("amplifier.offset_spread", a.offset_spread_volts, 0, 1);
+  if (r.has("amplifier.offset_sign")) {
+    if (r.raw("amplifier.offset_sign") != "random" && r.raw("amplifier.offset_sign") != "positive")
+      r.fail("amplifier.offset_sign", "must be random or positive");
+    a.random_sign = r.raw("amplifier.offset_sign") == "random";
+  }
   a.gain = r.number("amplifier.gain", a.gain, 10, 1e12);
   a.bandwidth_hz = r.number("amplifier.bandwidth", a.bandwidth_hz, 1, 1e10);
   a.slew_volts_per_second = r.number("amplifier.slew", a.slew_volts_per_second, 1, 1e12);

@@ -25,6 +25,9 @@ struct ElementType {
 struct AmplifierModel {
   std::string name = "TL071";
   double offset_volts = 1e-3, offset_spread_volts = 0;
+  /// Each amplifier's offset takes a sign of its own (fixed by its name, so a
+  /// deck is reproducible); false: every offset positive, as decks were before profiles.
+  bool random_sign = false;
   double gain = 2e5, bandwidth_hz = 3e6, slew_volts_per_second = 1.3e7;
 };
 
@@ -59,8 +62,8 @@ struct MachineProfile {
   std::map<ElementKind, ElementType> elements;          ///< the inventory; a kind not listed: none
   bool potentiometers_buffered = false;   ///< a follower on each wiper: no loading error
   double potentiometer_resolution = 1e-4; ///< the finest step a potentiometer is set to
-  double comparator_hysteresis = 0;       ///< MU, on the comparator's summed inputs
-  double switch_resistance = 1;           ///< ohms of a closed comparator switch
+  double comparator_hysteresis = 1e-3;    ///< MU, half-width of the hardware Schmitt trigger
+  double switch_resistance = 35;          ///< ohms of a closed switch (hardware level; DG419 class)
   AmplifierModel amplifier;
   std::map<std::string, Realisation> realisations;  ///< nonlinear block → elements it takes
   std::vector<std::string> modes;         ///< IC, OP, HALT, REP …
