@@ -145,7 +145,7 @@ class Allocator {
       threshold = parse_setting(block.parameter.substr(1, block.parameter.size() - 2));
     const std::string feature = feature_of(block.name);
     std::vector<std::string> taken;
-    std::string output;
+    std::string output, amplifier_output, comparator_output;
     bool own_potentiometer = false;
     for (const auto& [n, element] : parts)
       for (int i = 0; i < n; ++i) {
@@ -160,8 +160,12 @@ class Allocator {
         }
         const Element& e = take(element, block.name, block.comment, feature);
         taken.push_back(e.label);
-        if (output.empty() && element != ElementKind::diode) output = e.label;
+        // the block's output is its amplifier's, else its comparator's
+        const bool drives = element == ElementKind::summer || element == ElementKind::function_generator;
+        if (drives || (element == ElementKind::comparator && comparator_output.empty()))
+          (drives ? amplifier_output : comparator_output) = e.label;
       }
+    output = amplifier_output.empty() ? comparator_output : amplifier_output;
     if (threshold && !own_potentiometer && block.block == circuit::BlockKind::comparator) {
       if (!thresholds_.count(*threshold))
         thresholds_[*threshold] = potentiometer(
