@@ -68,7 +68,8 @@ class Builder {
     for (const Potentiometer& p : patch_.potentiometers) {
       if (is_initial_value(p.name)) continue;  // written below with their sign
       c_.parameters.emplace_back(p.name, p.setting);
-      c_.dial_settings[p.name] = p.loaded_setting;
+      // a buffered wiper (a follower) carries no load: the dial is the setting
+      c_.dial_settings[p.name] = patch_.machine.potentiometers_buffered ? p.setting : p.loaded_setting;
       c_.weights[p.name] = static_cast<int>(p.weight);
     }
     if (patch_.dead_zone) c_.parameters.emplace_back(Setting::a, *patch_.dead_zone);

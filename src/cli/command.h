@@ -28,5 +28,6 @@ int run_reduce(const std::vector<std::string>& args);
 int run_sweep(const std::vector<std::string>& args);
 int run_merge(const std::vector<std::string>& args);
 int run_figures(const std::vector<std::string>& args);
+int run_patch(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

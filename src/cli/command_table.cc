@@ -7,6 +7,7 @@ const std::vector<Command>& commands() {
       {"simulate", "run the reference model; CSV in physical units", run_simulate},
       {"settings", "scaling and the potentiometer settings of Table 1; --json", run_settings},
       {"netlist", "the circuit as an ngspice deck (--level ideal|hardware)", run_netlist},
+      {"patch", "the patch on a machine (--machine): fits?, wiring sheet, --json, --picture", run_patch},
       {"verify", "netlist -> ngspice -> compare with the reference; pass or fail", run_verify},
       {"bench", "speed/accuracy trade of every knob: tables, --json, --plot (work-precision)", run_bench},
       {"reduce", "section 2: n elastic stages in series -> one stiffness and damping", run_reduce},

@@ -23,6 +23,7 @@ int run_netlist(const std::vector<std::string>& args) {
        "(as settings --autoscale) instead of the paper's a-priori maxima")
       ("out,o", po::value<std::string>(), "write the deck to FILE (default stdout; - is stdout)");
   add_quality_option(options, "; written into the deck's .options and .tran lines");
+  add_machine_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [--autoscale] [--quality Q] [-o FILE.cir]\n\n"
                        "Writes the analog computer program of the scene (the paper's Bild 4) as an\n"
@@ -38,7 +39,7 @@ int run_netlist(const std::vector<std::string>& args) {
   const std::string deck_to = vm.count("out") ? vm["out"].as<std::string>() : "-";
   outputs.add("--out", deck_to);
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
-  const Scene scene = load_scene(file);
+  const Scene scene = load_scene(file, chosen_machine(vm));
   PatchOptions patch_options;
   patch_options.autoscale = vm.count("autoscale") > 0;
   patch_options.check_peaks = patch_options.autoscale;

@@ -9,6 +9,7 @@
 #include "circuit/quality.h"
 #include "common/error.h"
 #include "common/option_error.h"
+#include "machine/machine_file.h"
 
 namespace gearpatch::cli {
 
@@ -91,6 +92,19 @@ void add_quality_option(po::options_description& options, const std::string& not
 
 circuit::TransientControl chosen_quality(const po::variables_map& vm) {
   return circuit::quality_preset(vm["quality"].as<std::string>()).control;
+}
+
+void add_machine_option(po::options_description& options) {
+  std::string names;
+  for (const std::string& name : machine_names()) names += (names.empty() ? "" : ", ") + name;
+  options.add_options()("machine", po::value<std::string>(),
+                        ("the machine the scene is patched on: " + names +
+                         ", or a profile file (copy one from machines/ and edit it); default: the scene's "
+                         "machine.profile, else generic. The scene's machine.* keys override it").c_str());
+}
+
+std::string chosen_machine(const po::variables_map& vm) {
+  return vm.count("machine") ? vm["machine"].as<std::string>() : "";
 }
 
 }  // namespace gearpatch::cli

@@ -48,4 +48,10 @@ void add_quality_option(po::options_description& options, const std::string& not
 /// The transient settings of the --quality preset chosen; Error for an unknown name.
 circuit::TransientControl chosen_quality(const po::variables_map& vm);
 
+/// Adds --machine NAME|FILE, the machine profile the scene is patched on.
+void add_machine_option(po::options_description& options);
+
+/// The --machine given, or "" for the scene's own machine.profile.
+std::string chosen_machine(const po::variables_map& vm);
+
 }  // namespace gearpatch::cli

@@ -4,6 +4,8 @@
 #include "cli/options.h"
 #include "common/error.h"
 #include "common/output_set.h"
+#include "patching/machine_patch.h"
+#include "patching/patch_sheet.h"
 #include "scaling/patch.h"
 #include "scene/scene_inputs.h"
 
@@ -23,6 +25,7 @@ int run_settings(const std::vector<std::string>& args) {
        "comparator offsets δ1, δ2 in machine units, (0, 0.5]: above the comparators' hysteresis and the "
        "op-amps' zero errors (the ideal netlist uses 1e-5)");
   add_output_options(options, "the table", "the settings");
+  add_machine_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
                        "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"
@@ -48,8 +51,13 @@ int run_settings(const std::vector<std::string>& args) {
   o.round_speeds = vm.count("exact-maxima") == 0;
   o.comparator_offset = number_option(vm, "comparator-offset", 0, 0.5, true);  // in MU, below half the unit
   if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
-  const Patch patch = make_patch(load_scene(file), o);
-  const std::string table = to_table(patch);
+  const Scene scene = load_scene(file, chosen_machine(vm));
+  const Patch patch = make_patch(scene, o);
+  std::string table = to_table(patch);
+  // Only for a chosen machine, so that a scene without one keeps its table.
+  if (!chosen_machine(vm).empty() || scene.lines.count("machine.profile"))
+    table += "\nmachine: " + patching::fit_summary(patching::patch_on_machine(patch).allocation) +
+             "\n  (gearpatch patch SCENE --machine " + scene.machine.name + " writes the patch sheet)\n";
   if (outputs.has("--out")) outputs.stage("--out", table);
   if (outputs.has("--json")) outputs.stage("--json", to_json(patch));
   outputs.commit();

@@ -76,6 +76,7 @@ int run_verify(const std::vector<std::string>& args) {
        "run and kept whatever its outcome, to rerun it by hand)");
   add_output_options(options, "the report", "the report");
   add_quality_option(options, "; with --deck, the deck's own");
+  add_machine_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
@@ -111,7 +112,7 @@ int run_verify(const std::vector<std::string>& args) {
     outputs.add("--keep-deck", vm["keep-deck"].as<std::string>());
     o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
   }
-  const Scene scene = load_scene(file);
+  const Scene scene = load_scene(file, chosen_machine(vm));
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   auto simulator = spice::make_batch_ngspice();
