@@ -121,6 +121,7 @@ struct RowMeaning {
   std::map<Maximum, double> scales;
   double beta = 0;
   int option = 0;  ///< the choice column the row holds under (0: always)
+  std::optional<Setting> setting;  ///< the coefficient it limits, if any
 };
 
 struct Option {
@@ -261,7 +262,7 @@ class Model {
         const int h = lp_.add_row(name + " high", hi, -LinearProgram::infinity,
                                   std::log(o.gain) - c.value.constant + big + relaxed(name + ".high"));
         meanings_.push_back({h, fmt::format("{} at its largest, α = 1 {}", name, how), c.value.scales,
-                             c.value.beta, o.column});
+                             c.value.beta, o.column, c.name});
         lo.emplace_back(o.column, -big);
         slack(lo, name + ".low", 1);
         const int l = lp_.add_row(name + " low", lo,
@@ -269,14 +270,14 @@ class Model {
                                       relaxed(name + ".low"),
                                   LinearProgram::infinity);
         meanings_.push_back({l, fmt::format("{} at its smallest, α = {:g} {}", name, pr_.smallest_setting, how),
-                             c.value.scales, c.value.beta, o.column});
+                             c.value.scales, c.value.beta, o.column, c.name});
         if (k > 0) {  // the stages' output, the source amplified, stays within the unit
           const double bound = std::log(pr_.bounds.at(c.source->peak));
           const int s = lp_.add_row(name + " stage", {{u_.at(c.source->scale), -1}, {o.column, big}},
                                     -LinearProgram::infinity,
                                     -std::log1p(pr_.headroom) - k * std::log(amplify) - bound + big);
           meanings_.push_back({s, fmt::format("the stages in front of {} at the unit", name),
-                               {{c.source->scale, 1}}, 0, o.column});
+                               {{c.source->scale, 1}}, 0, o.column, c.name});
         }
         opts.push_back(o);
       }
@@ -296,7 +297,7 @@ class Model {
       const int h = lp_.add_row(name + " below", hi, -LinearProgram::infinity,
                                 std::log(pr_.smallest_setting * n) - c.value.constant + big);
       meanings_.push_back({h, fmt::format("{} below α_min at weight {}", name, n), c.value.scales, c.value.beta,
-                           o.column});
+                           o.column, c.name});
       opts.push_back(o);
     }
     lp_.add_row(name + " one choice", one, 1, 1);
@@ -486,8 +487,12 @@ std::vector<Conflict> explain_infeasible(const ScalingProblem& pr) {
     const auto key = parse_maximum(group.substr(group.find('.') + 1));
     std::vector<std::string> against;
     for (const auto& r : m.meanings())
-      if (key && r.option != 0 && chosen(m, r.option) && m.lp().row_binds(r.row, 1e-6) && r.scales.count(*key))
+      if (key && r.option != 0 && chosen(m, r.option) && m.lp().row_binds(r.row, 1e-6) && r.scales.count(*key)) {
         against.push_back(r.sentence);
+        // The scene key of the coefficient that holds it, for file:line: the scene has it.
+        if (against.size() == 1 && r.setting && !coefficient_key(*r.setting).empty())
+          c.scene_key = coefficient_key(*r.setting);
+      }
     if (!against.empty()) c.sentence += "; it is held there by: " + fmt::format("{}", fmt::join(against, "; "));
     out.push_back(c);
   }
