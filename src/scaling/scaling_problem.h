@@ -95,6 +95,11 @@ struct Conflict {
   std::string sentence;
 };
 
+/// Section 6's estimate as true bounds, what the problem starts from: speeds
+/// not rounded, and M0m = c·Δφ'm + d·Δφ̇'m (a preloaded scene whose flanks
+/// close at t = 0 has spring and damper at once; the paper takes the larger).
+Maxima peak_bounds(const ScalingInput& input);
+
 /// The problem of the scene from its a-priori (or simulated) peak bounds.
 ScalingProblem scaling_problem(const ScalingInput& input, const Maxima& bounds, double headroom,
                                std::optional<double> beta);

@@ -13,19 +13,6 @@ namespace gearpatch {
 
 namespace {
 
-/// Section 6's estimate as true bounds: speeds not rounded, and M0m with the
-/// spring and the damper acting together (a preloaded scene whose flanks
-/// close at t = 0 has both at once; the paper takes the larger).
-Maxima peak_bounds(const ScalingInput& s) {
-  Maxima m = estimate_maxima(s, {false});
-  const GearParameters& p = s.gear;
-  if (!s.maxima.count(Maximum::torque)) {
-    m.torque = p.stiffness * m.contact_twist + p.damping * m.relative_speed;
-    m.basis[Maximum::torque] = "c·Δφ'm + d·Δφ̇'m: spring and damper may act together";
-  }
-  return m;
-}
-
 /// The simulated peaks as the bounds (--autoscale).
 Maxima simulated_bounds(const Maxima& a_priori, const PhysicalPeaks& x, std::vector<std::string>& notes) {
   Maxima m = autoscaled(a_priori, x, 0, notes);
@@ -105,6 +92,16 @@ void check_peaks(const ScalingInput& s, const PatchOptions& o, const PeakRun& ru
 }
 
 }  // namespace
+
+Maxima peak_bounds(const ScalingInput& s) {
+  Maxima m = estimate_maxima(s, {false});
+  const GearParameters& p = s.gear;
+  if (!s.maxima.count(Maximum::torque)) {  // the paper takes the larger of the two
+    m.torque = p.stiffness * m.contact_twist + p.damping * m.relative_speed;
+    m.basis[Maximum::torque] = "c·Δφ'm + d·Δφ̇'m: spring and damper may act together";
+  }
+  return m;
+}
 
 void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* run, Patch& patch) {
   if (!(o.headroom >= 0 && o.headroom < 10)) throw Error("the headroom must be in [0, 10]");
