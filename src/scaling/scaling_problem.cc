@@ -111,6 +111,9 @@ namespace {
 constexpr double big = 200;               // big-M, in natural-log units (scales stay within ±span)
 const double span = std::log(1e8);        // how far a scale may stray from its bound
 constexpr double objective_slack = 1e-4;  // each fixed objective may give this much back (0.01 %)
+// A row within this of its bound (log units, 0.05 %) counts as binding: the
+// objectives fixed one after another each leave the solution that much play.
+constexpr double binding = 5e-4;
 
 using Terms = std::vector<std::pair<int, double>>;
 
@@ -334,7 +337,7 @@ bool chosen(Model& m, int column) { return column == 0 || m.lp().value(column) >
 std::map<std::string, std::string> fixed_by(Model& m, const ScalingProblem& pr) {
   auto find = [&](std::optional<Maximum> key) -> std::string {
     for (const auto& r : m.meanings()) {
-      if (!chosen(m, r.option) || !m.lp().row_binds(r.row, 1e-6)) continue;
+      if (!chosen(m, r.option) || !m.lp().row_binds(r.row, binding)) continue;
       if (key ? r.scales.count(*key) && r.scales.at(*key) != 0 : r.beta != 0) return r.sentence;
     }
     return key ? "the objective: higher levels or settings elsewhere" : "the objective: the largest settings";
@@ -487,7 +490,7 @@ std::vector<Conflict> explain_infeasible(const ScalingProblem& pr) {
     const auto key = parse_maximum(group.substr(group.find('.') + 1));
     std::vector<std::string> against;
     for (const auto& r : m.meanings())
-      if (key && r.option != 0 && chosen(m, r.option) && m.lp().row_binds(r.row, 1e-6) && r.scales.count(*key)) {
+      if (key && r.option != 0 && chosen(m, r.option) && m.lp().row_binds(r.row, binding) && r.scales.count(*key)) {
         against.push_back(r.sentence);
         // The scene key of the coefficient that holds it, for file:line: the scene has it.
         if (against.size() == 1 && r.setting && !coefficient_key(*r.setting).empty())

@@ -13,11 +13,23 @@ namespace gearpatch {
 
 namespace {
 
+/// A simulated peak far below its a-priori bound (the relative speed of two
+/// shafts creeping together) is kept at this share of the bound: scaling a
+/// signal up by more would make its coefficients unreachable for nothing.
+constexpr double least_share_of_bound = 0.01;
+
 /// The simulated peaks as the bounds (--autoscale).
 Maxima simulated_bounds(const Maxima& a_priori, const PhysicalPeaks& x, std::vector<std::string>& notes) {
   Maxima m = autoscaled(a_priori, x, 0, notes);
-  for (auto& [key, basis] : m.basis)
-    if (basis.rfind("autoscaled", 0) == 0) basis = "the simulated peak";
+  for (const auto& [key, bound] : a_priori.entries()) {
+    auto& basis = m.basis[key];
+    if (basis.rfind("autoscaled", 0) != 0) continue;
+    basis = "the simulated peak";
+    if (m.at(key) < least_share_of_bound * bound) {
+      m.at(key) = least_share_of_bound * bound;
+      basis = fmt::format("{:g} of the a-priori bound (the simulated peak is below it)", least_share_of_bound);
+    }
+  }
   return m;
 }
 
@@ -116,7 +128,20 @@ void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* ru
     patch.autoscaled = true;
     patch.notes.push_back("autoscale: the scaling is solved again with every simulated peak as the bound");
   }
-  auto [solution, in] = solve_over_k0(s, bounds, o);
+  auto solved = [&]() {
+    if (!patch.autoscaled) return solve_over_k0(s, bounds, o);
+    try {
+      return solve_over_k0(s, bounds, o);
+    } catch (const Error& e) {  // never worse than without --autoscale: the a-priori bounds fit
+      if (e.kind() != Error::Kind::input) throw;
+      patch.notes.push_back(std::string("autoscale: the simulated peaks admit no scaling (") + e.what() +
+                            "); solved with the a-priori bounds instead");
+      patch.autoscaled = false;
+      bounds = patch.a_priori;
+      return solve_over_k0(s, bounds, o);
+    }
+  };
+  auto [solution, in] = solved();
   patch.machine = in.machine;
   patch.k0 = in.machine.integrator_constant;
   patch.beta = solution.beta;
