@@ -24,9 +24,6 @@ double ScalingProblem::attenuating_gain() const {
 
 namespace {
 
-/// The share of the run within which the self-locking reaction must catch the
-/// load (as the paper recipe's strongest_lock).
-constexpr double lock_catch_fraction = 1e-3;
 
 /// The circuit's wiring: which signal each coefficient takes (circuit.cc).
 std::optional<CoefficientRequirement::Source> source_of(Setting s, bool backlash) {
