@@ -217,18 +217,23 @@ TEST_CASE("--autoscale solves again with the simulated peaks, each at 1/(1 + hea
   }
 }
 
-TEST_CASE("with several integrator constants the one that puts β nearest 1 is taken", "[scaling]") {
+TEST_CASE("the machine's chosen k0 is kept unless the run would not fit its OP time", "[scaling]") {
   // Only β·k0 enters the constraints: every k0 gives the same settings.
   ScalingInput in = scaling_input(testing::example_scene("bild6c"));
   PatchOptions o;
   o.check_peaks = false;
   const Patch one = make_patch(in, o);
-  in.machine.integrator_constants = {1, 10, 100};
-  const Patch chosen = make_patch(in, o);
   CHECK(one.beta == Approx(33.333).epsilon(1e-3));
+  in.machine.integrator_constants = {1, 10, 100};
+  CHECK(make_patch(in, o).k0 == 1);  // no OP-time limit: the chosen k0 stays
+  // bild6c runs 3 s, 100 s of machine time at k0 = 1 (β = 33.3): an OP time
+  // of 5 s needs k0 ≥ 20, so 100 is the nearest faster choice that fits.
+  in.machine.op_time = 5;
+  const Patch chosen = make_patch(in, o);
   CHECK(chosen.k0 == 100);
   CHECK(chosen.machine.integrator_constant == 100);
   CHECK(chosen.beta == Approx(one.beta / 100).epsilon(1e-6));
+  CHECK(chosen.beta * in.duration <= 5);
   REQUIRE(chosen.potentiometers.size() == one.potentiometers.size());
   for (std::size_t i = 0; i < one.potentiometers.size(); ++i) {
     INFO(to_string(one.potentiometers[i].name));

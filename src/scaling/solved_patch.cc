@@ -33,30 +33,32 @@ Maxima simulated_bounds(const Maxima& a_priori, const PhysicalPeaks& x, std::vec
   return m;
 }
 
-/// Solves for each k0 the machine offers; only β·k0 enters the constraints,
-/// so every k0 scales alike and the one that puts β nearest 1 (machine time
-/// as real time) is taken.
+/// Solves with the machine's chosen k0 (its profile's `k0`). Only β·k0 enters
+/// the constraints, so every k0 the machine offers scales alike; another one is
+/// taken only when the run in machine time, β·T, would not fit the machine's
+/// longest OP time: the nearest faster k0 that fits, else the fastest.
 std::pair<ScalingSolution, ScalingInput> solve_over_k0(const ScalingInput& s, const Maxima& bounds,
                                                        const PatchOptions& o) {
-  std::vector<double> k0s = s.machine.integrator_constants;
-  if (k0s.empty()) k0s = {s.machine.integrator_constant};
   const std::optional<double> beta = o.beta ? o.beta : s.machine.time_scale;
-  std::optional<std::pair<ScalingSolution, ScalingInput>> best;
-  for (double k0 : k0s) {
+  auto solve_at = [&](double k0) {
     ScalingInput in = s;
     in.machine.integrator_constant = k0;
-    const ScalingProblem problem = scaling_problem(in, bounds, o.headroom, beta);
-    auto solution = k0s.size() == 1 ? std::optional(solve_or_explain(problem)) : solve_scaling(problem);
-    if (!solution) continue;
-    if (!best || std::abs(std::log(solution->beta)) < std::abs(std::log(best->first.beta)))
-      best.emplace(std::move(*solution), std::move(in));
-  }
-  if (!best) {  // none fits: explain with the machine's chosen k0
-    ScalingInput in = s;
-    solve_or_explain(scaling_problem(in, bounds, o.headroom, beta));
-    throw Error("no k0 of the machine gives a scaling", Error::Kind::internal);
-  }
-  return std::move(*best);
+    auto solution = solve_or_explain(scaling_problem(in, bounds, o.headroom, beta));
+    return std::pair<ScalingSolution, ScalingInput>(std::move(solution), std::move(in));
+  };
+  auto chosen = solve_at(s.machine.integrator_constant);
+  const double op_time = s.machine.op_time;
+  if (op_time <= 0 || beta || chosen.first.beta * s.duration <= op_time) return chosen;
+  std::vector<double> faster;
+  for (double k0 : s.machine.integrator_constants)
+    if (k0 > s.machine.integrator_constant) faster.push_back(k0);
+  if (faster.empty()) return chosen;
+  std::sort(faster.begin(), faster.end());
+  // β·k0 is the same for every k0: the run lasts β·T·k0_chosen/k0 there.
+  const double product = chosen.first.beta * s.machine.integrator_constant;
+  for (double k0 : faster)
+    if (product / k0 * s.duration <= op_time) return solve_at(k0);
+  return solve_at(faster.back());
 }
 
 /// The potentiometer of a solved coefficient, checked against Table 1 at the solved scales.
