@@ -25,5 +25,6 @@ int run_netlist(const std::vector<std::string>& args);
 int run_verify(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_reduce(const std::vector<std::string>& args);
+int run_random_scenes(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

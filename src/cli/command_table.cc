@@ -10,6 +10,7 @@ const std::vector<Command>& commands() {
       {"verify", "netlist -> ngspice -> compare with the reference; pass or fail", run_verify},
       {"bench", "speed/accuracy trade of every knob: tables, --json, --plot (work-precision)", run_bench},
       {"reduce", "section 2: n elastic stages in series -> one stiffness and damping", run_reduce},
+      {"random-scenes", "seeded random scenes over every feature class, for testing verify", run_random_scenes},
   };
   return table;
 }
