@@ -5,7 +5,7 @@
 #   bench/random-scenes.sh 1 42 --autoscale
 # One line per scene (verdict, the first line of the reason), then the counts:
 # pass (exit 0), fail (1), refused (2: the scaling says why), abort (3: ngspice
-# aborted or timed out). KEEP=DIR keeps the scenes and reports there.
+# aborted or timed out, also on the one retry), and how many needed the retry. KEEP=DIR keeps the scenes and reports there.
 # GEARPATCH=path/to/gearpatch (default build/gearpatch); JOBS=n (default 2).
 set -eu
 seed=${1:-1}
@@ -22,6 +22,7 @@ verdict() {  # scene.ini verify-options... -> "name verdict reason"
   "$gearpatch" verify "$scene" "$@" >"$out" 2>&1 || rc=$?
   local names=(pass fail refused abort internal)
   local reason=$(grep -m1 -E '^  - |gearpatch verify: [^r]' "$out" | cut -c1-160)
+  grep -q '^ngspice retry' "$out" && reason="(ngspice retried) $reason"
   printf '%-36s %-8s %s\n' "$(basename "${scene%.ini}")" "${names[$rc]:-rc$rc}" "$reason"
 }
 export -f verdict
@@ -31,3 +32,5 @@ echo "seed $seed, $count scenes, verify $*:"
 for v in pass fail refused abort internal; do
   printf '  %-8s %d\n' "$v" "$(awk -v v=$v '$2 == v' "$dir/verdicts.txt" | wc -l)"
 done
+printf '  %-8s %d (of the above; ngspice aborted once and the one retry ran)\n' retried \
+  "$(grep -c '(ngspice retried)' "$dir/verdicts.txt")"
