@@ -68,7 +68,11 @@ void draw_gear(Draw& d, SceneFeature feature, Values& v) {
                                       std::min(10.0, v.inertia_primary * 1e3));
   v.stiffness = d.log_uniform(10, 1e5);
   v.restitution = d.uniform(0, 1);
-  v.backlash = feature == SceneFeature::zero_backlash ? 0 : d.log_uniform(1e-3, 0.2);
+  v.backlash = d.log_uniform(1e-3, 0.2);
+  // Zero backlash: its own class, and a quarter of the self-locking scenes
+  // (the lock then acts at every change of the torque's sign).
+  if (feature == SceneFeature::zero_backlash || (feature == SceneFeature::self_locking && d.chance(0.25)))
+    v.backlash = 0;
 }
 
 /// How the drive moves: a constant torque that crosses the play within a few
