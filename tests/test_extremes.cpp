@@ -249,7 +249,7 @@ TEST_CASE("a backlash of 1e-9 rad moves like none with a bounded event count", "
   CHECK(scaled_difference(none.trajectory, run(smaller).trajectory, 1) < 1e-6);
 }
 
-TEST_CASE("a play far wider than the contact twist: exact reference and the circuit refused naming alpha11", "[extremes]") {
+TEST_CASE("a play far wider than the contact twist: exact reference; the paper's recipe refuses naming alpha11", "[extremes]") {
   const Scene scene = extreme("backlash-wide");
   const Run r = run(scene);
   const auto k = restitutions(r.trajectory);
@@ -258,6 +258,7 @@ TEST_CASE("a play far wider than the contact twist: exact reference and the circ
   CHECK(momentum_drift(r) < 1e-12);
   PatchOptions o;
   o.check_peaks = false;
+  o.method = ScalingMethod::paper;
   const std::string why = refusal([&] { make_patch(scene, o); });
   INFO(why);
   CHECK_THAT(why, Catch::Contains("alpha11") && Catch::Contains("smaller backlash or a softer coupling"));
@@ -533,12 +534,26 @@ TEST_CASE("the circuit passes at a 1e4 inertia ratio and a soft coupling and in 
   }
 }
 
-TEST_CASE("the circuit is refused where alpha11 cannot reach the contact twist", "[extremes][ngspice]") {
+TEST_CASE("where the paper's alpha11 is beyond every weight, the solved scaling adds stages and passes",
+          "[extremes][ngspice]") {
   auto ngspice = spice::make_batch_ngspice();
   for (const std::string name : {"backlash-wide", "ratio-small"}) {
     INFO(name);
-    const std::string why = refusal([&] { verify::verify(extreme(name), {}, *ngspice); });
+    verify::VerifyOptions paper;
+    paper.paper_scaling = true;
+    const std::string why = refusal([&] { verify::verify(extreme(name), paper, *ngspice); });
     INFO(why);
     CHECK_THAT(why, Catch::Contains("alpha11") && Catch::Contains("smaller backlash or a softer coupling"));
+    PatchOptions o;
+    o.check_peaks = false;
+    const Patch patch = make_patch(extreme(name), o);
+    const Potentiometer* alpha11 = patch.find(Setting::alpha11);
+    REQUIRE(alpha11);
+    CHECK(alpha11->stages > 0);  // amplifying stages in front of the X' amplifier
+    CHECK(alpha11->coefficient > 10);
+    const verify::VerifyResult r = verify::verify(extreme(name), {}, *ngspice);
+    for (const auto& f : r.failures) INFO(f);
+    CHECK(r.passed);
+    CHECK(r.overloads.empty());
   }
 }

@@ -73,6 +73,7 @@ struct Circuit {
   std::map<Signal, Probe> probes;              ///< one per compared signal
   double beta = 1;                              ///< machine time = β · real time
   bool autoscaled = false;                      ///< scaled from the simulated peaks (--autoscale)
+  std::string scaling = "paper";                ///< the deck header's word (Patch::scaling_name)
   double duration = 1;                          ///< real time, s
 
   /// Every node an op-amp drives in its linear range (the overload check);

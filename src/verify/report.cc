@@ -47,7 +47,7 @@ std::string to_table(const VerifyResult& r) {
                      r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
                                                 : "--deck without a gearpatch header, level and scaling "
                                                   "from the options (not checked against the deck)",
-                     level_name(r.level), r.autoscaled ? "autoscale" : "paper");
+                     level_name(r.level), r.scaling);
   t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12} {:>8} {:>8}  {}\n", "signal", "full scale", "unit",
                    "amplitude %", "pointwise %", "rms %", "outside", "worst at t [s]");
   for (const auto& e : r.comparison.signals)
@@ -91,7 +91,7 @@ std::string to_json(const VerifyResult& r) {
   j["passed"] = r.passed;
   j["beta"] = r.beta;
   j["deck_scaling"] = r.deck_scaling;  // generated, header or options
-  j["scaling"] = r.autoscaled ? "autoscale" : "paper";
+  j["scaling"] = r.scaling;
   j["ngspice_seconds"] = r.ngspice_seconds;
   j["retry"] = r.retry ? nlohmann::json{{"first_failure", r.retry->first_failure}, {"change", r.retry->change}}
                        : nlohmann::json(nullptr);

@@ -107,11 +107,13 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   PatchOptions patch_options;
   patch_options.comparator_offset = circuit::comparator_offset(options.level);
   patch_options.autoscale = options.autoscale;
+  if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
   const Patch patch = make_patch(input, patch_options, run);
   r.warnings = patch.warnings;
   const circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
   r.beta = circuit.beta;
   r.autoscaled = circuit.autoscaled;
+  r.scaling = circuit.scaling;
   if (options.deck_header) check_deck_header(*options.deck_header, circuit);
   if (options.deck_text) r.deck_scaling = options.deck_header ? "header" : "options";
   const std::string deck = options.deck_text.value_or(

@@ -27,6 +27,7 @@ struct VerifyOptions {
   /// transient above must agree with it; its β and machine are checked here.
   std::optional<spice::DeckHeader> deck_header;
   bool autoscale = false;               ///< scale from the simulated peaks + 10 % (settings --autoscale)
+  bool paper_scaling = false;           ///< the paper's recipe (--scaling paper) instead of the solved scaling
   circuit::TransientControl transient;
   spice::RunLimits limits;
 };
@@ -55,6 +56,7 @@ struct VerifyResult {
   /// without one: level and scaling as the options say, unchecked).
   std::string deck_scaling = "generated";
   bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale)
+  std::string scaling = "solved";  ///< the deck header's word: solved, solved-autoscale, paper, autoscale
   GearParameters gear;  ///< the reference model's, for the plot
   Trajectory reference;
   CircuitTrace circuit;
