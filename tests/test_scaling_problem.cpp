@@ -216,3 +216,23 @@ TEST_CASE("--autoscale solves again with the simulated peaks, each at 1/(1 + hea
     }
   }
 }
+
+TEST_CASE("with several integrator constants the one that puts β nearest 1 is taken", "[scaling]") {
+  // Only β·k0 enters the constraints: every k0 gives the same settings.
+  ScalingInput in = scaling_input(testing::example_scene("bild6c"));
+  PatchOptions o;
+  o.check_peaks = false;
+  const Patch one = make_patch(in, o);
+  in.machine.integrator_constants = {1, 10, 100};
+  const Patch chosen = make_patch(in, o);
+  CHECK(one.beta == Approx(33.333).epsilon(1e-3));
+  CHECK(chosen.k0 == 100);
+  CHECK(chosen.machine.integrator_constant == 100);
+  CHECK(chosen.beta == Approx(one.beta / 100).epsilon(1e-6));
+  REQUIRE(chosen.potentiometers.size() == one.potentiometers.size());
+  for (std::size_t i = 0; i < one.potentiometers.size(); ++i) {
+    INFO(to_string(one.potentiometers[i].name));
+    CHECK(chosen.potentiometers[i].setting == Approx(one.potentiometers[i].setting).epsilon(1e-4));
+    CHECK(chosen.potentiometers[i].weight == one.potentiometers[i].weight);
+  }
+}

@@ -231,9 +231,6 @@ void add_notes(const ScalingInput& s, const GearParameters& p, const PatchOption
                         "(R_in = input_resistance/n; initial values: input_resistance)");
 }
 
-/// The share of the run within which the self-locking reaction must catch a
-/// secondary turning at full scale against the engagement.
-constexpr double lock_catch_fraction = 1e-3;
 
 /// The paper's k_Re → ∞ stops the secondary at once; a machine can only
 /// drive an integrator at α·n ≤ the largest weight, so the reaction (blocks

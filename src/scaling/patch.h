@@ -97,11 +97,14 @@ struct Patch {
 /// The scaling word of a deck header back to method and autoscale; Error on an unknown one.
 std::pair<ScalingMethod, bool> parse_scaling_name(const std::string& name);
 
-/// Settings for the scene: a-priori maxima (section 6), β, Table 1 split into
-/// α·n, loaded settings; with check_peaks a run of the reference model
-/// reports every signal's peak, with autoscale the maxima become the peaks
-/// plus headroom. Throws Error (input, about the scene key to change) for a
-/// coefficient no weight reaches, naming it and what to change.
+/// Settings for the scene. Solved (the default): every scale and β from the
+/// constraint problem of scaling_problem.h, with extra stages where no
+/// potentiometer reaches; Error (input, about the scene key to change) naming
+/// the conflicting constraints and the smallest change when nothing fits.
+/// Paper: a-priori maxima (section 6), β, Table 1 split into α·n; Error for a
+/// coefficient no weight reaches. Both: loaded settings; with check_peaks a
+/// run of the reference model reports every signal's peak; with autoscale
+/// the simulated peaks replace the a-priori bounds (paper: plus headroom).
 Patch make_patch(const ScalingInput& input, const PatchOptions& options = {});
 /// The same with the reference run already done (verify runs it once for the
 /// peak check and its comparison).

@@ -24,9 +24,6 @@ double ScalingProblem::attenuating_gain() const {
 
 namespace {
 
-/// The share of the run within which the self-locking reaction must catch the
-/// load (as the paper recipe's strongest_lock).
-constexpr double lock_catch_fraction = 1e-3;
 
 /// The circuit's wiring: which signal each coefficient takes (circuit.cc).
 std::optional<CoefficientRequirement::Source> source_of(Setting s, bool backlash) {
@@ -434,8 +431,8 @@ Conflict describe(const ScalingProblem& pr, const std::string& group, double fac
     const std::string key = group.substr(6);
     c.scene_key = "maxima." + key;
     c.sentence = fmt::format(
-        "{} must stay above {:g} MU of the machine unit (below it offsets and noise swamp it): it would have to "
-        "sink {}× lower", key, pr.lowest_level, f);
+        "{} must stay above {:g} MU of the machine unit (below it offsets and noise swamp it), but would have to "
+        "sink {}× lower (a machine whose lowest useful level is {}× lower would do)", key, pr.lowest_level, f, f);
   } else if (group == "beta.oscillation") {
     c.scene_key = "gear.stiffness";
     c.sentence = fmt::format(
@@ -488,15 +485,29 @@ std::vector<Conflict> explain_infeasible(const ScalingProblem& pr) {
     Conflict c = describe(pr, group, std::exp(s));
     // What it is up against: the other binding limits on the same scale.
     const auto key = parse_maximum(group.substr(group.find('.') + 1));
-    std::vector<std::string> against;
-    for (const auto& r : m.meanings())
-      if (key && r.option != 0 && chosen(m, r.option) && m.lp().row_binds(r.row, binding) && r.scales.count(*key)) {
+    // A floor is pushed against by rows that raise the scale, a peak bound by
+    // rows that lower it: only those are the other side of the conflict.
+    const bool floor = group.rfind("floor.", 0) == 0;
+    std::vector<std::string> against, change;
+    for (const auto& r : m.meanings()) {
+      if (!key || r.option == 0 || !chosen(m, r.option) || !m.lp().row_binds(r.row, binding) || !r.scales.count(*key))
+        continue;
+      const double e = r.scales.at(*key);
+      const bool largest = r.sentence.find("at its largest") != std::string::npos;
+      const bool stage = r.sentence.find("stages in front") != std::string::npos;
+      const bool raises = stage || (largest ? e < 0 : e > 0);
+      if (raises != floor) continue;
+      {
         against.push_back(r.sentence);
+        if (!r.setting || coefficient_key(*r.setting).empty()) continue;
         // The scene key of the coefficient that holds it, for file:line: the scene has it.
-        if (against.size() == 1 && r.setting && !coefficient_key(*r.setting).empty())
-          c.scene_key = coefficient_key(*r.setting);
+        if (change.empty()) c.scene_key = coefficient_key(*r.setting);
+        change.push_back(fmt::format("{} {:.4g}× {} (scene key {})", to_string(*r.setting), c.factor,
+                                     largest ? "smaller" : "larger", coefficient_key(*r.setting)));
       }
+    }
     if (!against.empty()) c.sentence += "; it is held there by: " + fmt::format("{}", fmt::join(against, "; "));
+    if (!change.empty()) c.sentence += "; or make " + fmt::format("{}", fmt::join(change, " and "));
     out.push_back(c);
   }
   std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.factor > b.factor; });
