@@ -29,5 +29,6 @@ int run_sweep(const std::vector<std::string>& args);
 int run_merge(const std::vector<std::string>& args);
 int run_figures(const std::vector<std::string>& args);
 int run_patch(const std::vector<std::string>& args);
+int run_random_scenes(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

@@ -14,6 +14,7 @@ const std::vector<Command>& commands() {
       {"sweep", "vary scene keys (--set KEY=V1,V2 or ranges): figures per point, overlay plots", run_sweep},
       {"merge", "the table and plots of a run folder whose jobs ran elsewhere (GNU Parallel, Slurm)", run_merge},
       {"figures", "the paper's Bild 5a-c and 6a-c from the example scenes (-o docs/figures)", run_figures},
+      {"random-scenes", "seeded random scenes over every feature class, for testing verify", run_random_scenes},
   };
   return table;
 }

@@ -70,7 +70,11 @@ std::string to_table(const VerifyResult& r) {
   for (const auto& o : r.overloads)
     t += fmt::format("OVERLOAD {} = {:.4g} MU at t = {:.6g} s\n", o.node, o.value, o.t);
   for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
-  t += fmt::format("ngspice: {:.2f} s\n\n", r.ngspice_seconds);
+  t += fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds);
+  if (r.retry)
+    t += fmt::format("ngspice retry: the first run aborted ({}); ran once more with {}\n", r.retry->first_failure,
+                     r.retry->change);
+  t += "\n";
   if (r.passed) return t + "PASS\n";
   t += "FAIL\n";
   for (const auto& f : r.failures) t += "  - " + f + "\n";
@@ -89,6 +93,8 @@ std::string to_json(const VerifyResult& r) {
   j["deck_scaling"] = r.deck_scaling;  // generated, header or options
   j["scaling"] = r.scaling;
   j["ngspice_seconds"] = r.ngspice_seconds;
+  j["retry"] = r.retry ? nlohmann::json{{"first_failure", r.retry->first_failure}, {"change", r.retry->change}}
+                       : nlohmann::json(nullptr);
   for (const auto& e : r.comparison.signals)
     j["signals"][to_string(e.signal)] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
                                          {"pointwise_error", e.pointwise_error}, {"rms_error", e.rms_error},

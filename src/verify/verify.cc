@@ -120,7 +120,16 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
       circuit::render_netlist(circuit, options.transient));
 
   const auto start = std::chrono::steady_clock::now();
-  const spice::Vectors vectors = simulator.run(deck, options.limits);
+  // One bounded retry of a generated deck that ngspice aborts: the stiffly
+  // stable gear method, which damps what trap lets ring at a switching corner.
+  const auto with_gear = [&]() -> std::optional<std::string> {
+    if (options.deck_text || options.transient.method == "gear") return std::nullopt;
+    circuit::TransientControl gear = options.transient;
+    gear.method = "gear";
+    return circuit::render_netlist(circuit, gear);
+  };
+  const spice::Vectors vectors =
+      spice::run_with_retry(simulator, deck, options.limits, with_gear, "method=gear", r.retry);
   r.ngspice_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   check_simulator_output(vectors, circuit);
 

@@ -8,6 +8,7 @@
 #include "model/gear_model.h"
 #include "solver/trajectory.h"
 #include "spice/deck_reader.h"
+#include "spice/retry.h"
 #include "spice/simulator.h"
 #include "verify/compare.h"
 
@@ -47,7 +48,9 @@ struct VerifyResult {
   std::vector<Overload> overloads;
   double beta = 1;
   double duration = 0;  ///< s, real time of the run
-  double ngspice_seconds = 0;
+  double ngspice_seconds = 0;  ///< both runs, if there was a retry
+  /// Set when ngspice aborted the generated deck and the one retry ran it.
+  std::optional<spice::Retry> retry;
   /// Whose scaling the deck was read back with: "generated" (verify's own
   /// deck), "header" (a --deck's gearpatch header) or "options" (a --deck
   /// without one: level and scaling as the options say, unchecked).
