@@ -4,6 +4,7 @@
 // it through the real ngspice at the ideal level.
 #include <catch2/catch.hpp>
 #include <chrono>
+#include <regex>
 #include <cmath>
 #include <numbers>
 
@@ -273,7 +274,8 @@ TEST_CASE("a very stiff coupling settles in contact fast with the closed-form ac
   INFO("ω·T = " << omega * r.scene.duration << ", " << r.trajectory.events.size() << " events, "
                 << r.seconds << " s");
   CHECK(omega * r.scene.duration / (2 * std::numbers::pi) > 1e6);  // periods in the run
-  CHECK(r.seconds < 0.5 * testing::slowdown);  // 3 s before the exact solver skipped what no guard can reach
+  // Its speed (3 s before the exact solver skipped what no guard can reach) is
+  // the bench's to measure, not a wall-clock limit here.
   // the impacts end: the last event is early in the run
   REQUIRE(!r.trajectory.events.empty());
   CHECK(r.trajectory.events.back().t < 0.2 * r.scene.duration);
@@ -469,15 +471,17 @@ TEST_CASE("with k < 1 and a drive the impacts end: none in the second half of a 
   CHECK(r.trajectory.events.size() < 50);
 }
 
-TEST_CASE("a stiff undamped rattle is refused within a second naming the event limit", "[extremes]") {
+TEST_CASE("a stiff undamped rattle is refused early, from its event rate, naming the event limit", "[extremes]") {
   const Scene s = extreme("rattle");
-  const auto start = std::chrono::steady_clock::now();
   const std::string why = refusal([&] { run(s); });
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  INFO(why << " (" << seconds << " s)");
+  INFO(why);
   CHECK_THAT(why, Catch::Contains("too many events") && Catch::Contains("limit of 5000000") &&
                       Catch::Contains("run.duration") && Catch::Contains("restitution < 1"));
-  CHECK(seconds < 1.0 * testing::slowdown);
+  // Refused from the projected rate, long before the limit is reached: the
+  // work done is the events walked, counted in the message (not wall time).
+  std::smatch walked;
+  REQUIRE(std::regex_search(why, walked, std::regex("too many events: ([0-9]+) by t")));
+  CHECK(std::stod(walked[1]) < 5e6 / 10);
   // The command line names the scene file the refusal is about.
   std::string output;
   const std::string file = testing::source_path("scenes/extremes/rattle.ini");
