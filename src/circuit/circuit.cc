@@ -146,12 +146,15 @@ class Builder {
     if (has(Setting::alpha_load))
       in.push_back(through(patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load));
     if (has(Setting::alpha_lock)) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
-      // Latched until the secondary has stopped: the saturated reaction,
-      // released as the flanks part again, only reflected the secondary's
-      // speed about the primary's instead of stopping it (measured: 35 % on
-      // scenes/extremes/lock-zero-backlash.ini).
-      in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p", "stopped_bwd"));
-      in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n", "stopped_fwd"));
+      // Without backlash, latched until the secondary has stopped: the
+      // saturated reaction, released as the flanks change sides again, only
+      // reflected the secondary's speed about the primary's instead of
+      // stopping it (measured: 25 % on scenes/extremes/lock-zero-backlash.ini).
+      // With backlash the latch is left out (measured: it failed
+      // random-1-003 by 31 % with --autoscale).
+      const bool latch = !patch_.dead_zone;
+      in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p", latch ? "stopped_bwd" : ""));
+      in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n", latch ? "stopped_fwd" : ""));
     }
     if (has(Setting::alpha_load)) {
       c_.sources.emplace_back("ref_p", 1.0);
@@ -244,6 +247,7 @@ class Builder {
     block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"}, "",
           "lock_below = min(clip, 0), lock_above = max(clip, 0)");
     contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
+    if (patch_.dead_zone) return;  // the latch is for zero backlash only (add_secondary)
     const std::string release = fmt::format("{}", lock_release(level_));
     block("cmp_stopped_bwd", BlockKind::comparator, {"ws", "stopped_bwd"}, "-" + release,
           "lock latch release: ws > -" + release + ", backward motion stopped");
