@@ -131,7 +131,7 @@ TEST_CASE("block library: levels, names and argument checks", "[blocks]") {
   CHECK(level_name(Level::hardware) == "hardware");
 
   const std::vector<std::string> expected = {"potentiometer", "dead_zone", "limiter", "abs",
-                                             "halfwave",      "comparator", "switch"};
+                                             "halfwave",      "comparator", "switch", "latch"};
   CHECK(block_names() == expected);
   CHECK(block_info("halfwave").pins == std::vector<std::string>{"in", "pos", "neg"});
   CHECK(block_info("comparator").param == "offset");

@@ -86,6 +86,7 @@ const std::vector<BlockInfo>& infos() {
       {BlockKind::halfwave, "halfwave", "gp_halfwave", {"in", "pos", "neg"}, ""},
       {BlockKind::comparator, "comparator", "gp_comparator", {"in", "ctrl"}, "offset"},
       {BlockKind::analog_switch, "switch", "gp_switch", {"in", "out", "ctrl"}, ""},
+      {BlockKind::latch, "latch", "gp_latch", {"in", "out", "set", "reset"}, ""},
   };
   return table;
 }
@@ -153,6 +154,8 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("sw_ron", num(F::switch_ron));
     ctx.set("sw_roff", num(F::switch_roff));
     ctx.set("sw_vh", num(F::switch_vh_mu * u));
+    ctx.set("latch_vt", num(0.45 * u));
+    ctx.set("latch_vh", num(u));
     const double w = F::comparator_width_mu * u;
     ctx.set("cmp_width", num(w));
     ctx.set("cmp_width_mu", num(F::comparator_width_mu));
@@ -199,6 +202,8 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("hsw_vt", num(F::switch_vt));
   ctx.set("hsw_vh", num(F::switch_vh));
   ctx.set("hsw_tau", num(F::switch_tau));
+  ctx.set("hlatch_vt", num(0.45 * vsat));  // as at the ideal level, on the triggers' +-vsat
+  ctx.set("hlatch_vh", num(vsat));
   ctx.set("hsw_rdel", num(F::switch_rdel));
   ctx.set("hsw_cdel", num(F::switch_tau / F::switch_rdel));
   // Integrator: hold the summing junction at the op-amp's balance point.

@@ -26,7 +26,7 @@ struct Input {
 
 /// The fixed-pin blocks of the library. (Integrators and summers have
 /// per-instance input lists: render_amplifier.)
-enum class BlockKind { potentiometer, dead_zone, limiter, abs, halfwave, comparator, analog_switch };
+enum class BlockKind { potentiometer, dead_zone, limiter, abs, halfwave, comparator, analog_switch, latch };
 
 /// A fixed-pin block: its kind, name, subckt name, pins in order and instance parameter.
 struct BlockInfo {

@@ -24,6 +24,10 @@ struct AmplifierInput {
   std::optional<Setting> potentiometer;
   int weight = 1;
   std::string switched_by;
+  /// With switched_by: a latch in parallel with the switch (gp_latch), closed
+  /// once switched_by is high and released_by low, opened once switched_by
+  /// is low and released_by high, held in between.
+  std::string released_by;
 };
 
 /// An inverting integrator or summer of the machine, with its output node.
@@ -103,6 +107,11 @@ double comparator_offset(Level level);
 /// so little phase margin that it oscillated at about 2 kHz.
 double friction_band(Level level);
 double lock_band(Level level);
+
+/// The secondary speed (MU) below which the self-locking latch lets go:
+/// beyond the comparators' smooth width (ideal) or hysteresis (hardware), so
+/// that a held secondary reads as stopped.
+double lock_release(Level level);
 
 /// The circuit that solves (6.1)–(6.10) with the patch's settings at the
 /// given level on the patch's machine, holding only the blocks the scene needs.

@@ -60,6 +60,7 @@ std::string library(const Circuit& c, Level level, const MachineProfile& m) {
     for (const auto& in : a.inputs) {
       if (in.potentiometer) add(BlockKind::potentiometer);
       if (!in.switched_by.empty()) add(BlockKind::analog_switch);
+      if (!in.released_by.empty()) add(BlockKind::latch);
     }
   for (const auto& [name, kind] : kinds) text += "\n" + render_block(level, kind, m);
   for (const auto& a : c.amplifiers) {
@@ -87,6 +88,9 @@ std::string amplifier_instances(const Amplifier& a) {
     if (!in.switched_by.empty()) {
       const std::string after = node + "_sw";
       text += fmt::format("Xsw_{} {} {} {} gp_switch\n", node, node, after, in.switched_by);
+      if (!in.released_by.empty())
+        text += fmt::format("Xlatch_{} {} {} {} {} gp_latch\n", node, node, after, in.switched_by,
+                            in.released_by);
       node = after;
     }
     pins += node + " ";
