@@ -110,6 +110,11 @@ void check_peaks(const ScalingInput& s, const PatchOptions& o, const PeakRun& ru
 Maxima peak_bounds(const ScalingInput& s) {
   Maxima m = estimate_maxima(s, {false});
   const GearParameters& p = s.gear;
+  if (p.self_locking && !s.maxima.count(Maximum::relative_speed) && m.speed_primary > m.relative_speed) {
+    // A lock stops the secondary at once: from then on Δφ̇ is the primary's speed.
+    m.relative_speed = m.speed_primary;
+    m.basis[Maximum::relative_speed] = "φ̇pm: a self-locking stop leaves the primary's speed as the relative one";
+  }
   if (!s.maxima.count(Maximum::torque)) {  // the paper takes the larger of the two
     m.torque = p.stiffness * m.contact_twist + p.damping * m.relative_speed;
     m.basis[Maximum::torque] = "c·Δφ'm + d·Δφ̇'m: spring and damper may act together";
