@@ -5,6 +5,7 @@
 #include "common/error.h"
 #include "common/output_set.h"
 #include "scaling/patch.h"
+#include "scene/drive_report.h"
 #include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
@@ -48,8 +49,9 @@ int run_settings(const std::vector<std::string>& args) {
   o.round_speeds = vm.count("exact-maxima") == 0;
   o.comparator_offset = number_option(vm, "comparator-offset", 0, 0.5, true);  // in MU, below half the unit
   if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
-  const Patch patch = make_patch(load_scene(file), o);
-  const std::string table = to_table(patch);
+  const Scene scene = load_scene(file);
+  const Patch patch = make_patch(scene, o);
+  const std::string table = drive_report(scene) + to_table(patch);
   if (outputs.has("--out")) outputs.stage("--out", table);
   if (outputs.has("--json")) outputs.stage("--json", to_json(patch));
   outputs.commit();

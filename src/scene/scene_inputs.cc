@@ -18,6 +18,16 @@ GearParameters gear_parameters(const Scene& s) {
   p.self_locking = s.self_locking;
   p.drive_torque = s.drive_torque;
   p.load_torque = s.load_torque;
+  const DriveExtras& x = s.extras;
+  if (!x.profile_points.empty()) p.drive_profile = DriveProfile(x.profile_points);
+  p.motor_slope = x.motor_slope;
+  p.viscous_primary = x.viscous_primary;
+  p.viscous_secondary = x.viscous_secondary;
+  if (x.reactive_load) {  // resists motion like friction: the secondary's friction level
+    p.reactive_load = s.load_torque;
+    p.bearing_secondary += s.load_torque;
+    p.load_torque = 0;
+  }
   return p;
 }
 

@@ -185,15 +185,18 @@ class ExactSegment : public Segment {
     const double rest = oscillator_.equilibrium();
     g.l0 = f.omega_p * s0_.omega_p + f.omega_s * s0_.omega_s + f.constant +
            f.dphi * (d_.offset + rest) + j * v0;
-    g.l1 = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s + j * force_;
+    g.l1 = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s + j * force_ +
+           f.time;
+    g.l0 += f.time * t0_;  // a guard that moves with a ramping drive
     g.p = f.dphi;
     g.q = -j;
     // The sizes of the terms that cancel in l0 and l1: their rounding.
     g.l0_size = std::abs(f.omega_p * s0_.omega_p) + std::abs(f.omega_s * s0_.omega_s) +
                 std::abs(f.constant) + std::abs(f.dphi * d_.offset) + std::abs(f.dphi * rest) +
                 std::abs(j * v0);
+    g.l0_size += std::abs(f.time * t0_);
     g.l1_size = std::abs(f.omega_p * d_.inv_p * d_.force_p) +
-                std::abs(f.omega_s * d_.inv_s * d_.force_s) + std::abs(j * force_);
+                std::abs(f.omega_s * d_.inv_s * d_.force_s) + std::abs(j * force_) + std::abs(f.time);
     return g;
   }
 
@@ -270,8 +273,8 @@ class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
                                  double t0, double horizon) override {
-    return std::make_unique<ExactSegment>(model.dynamics(mode), model.guards(mode), state, t0,
-                                          horizon);
+    return std::make_unique<ExactSegment>(model.dynamics(mode, t0), model.guards(mode, t0), state,
+                                          t0, horizon);
   }
 };
 
