@@ -85,9 +85,13 @@ class Builder {
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
     std::vector<AmplifierInput> in;
     if (has(Setting::alpha2)) {
-      c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
+      if (patch_.drive_profile.empty())
+        c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
+      else
+        c_.pwl_sources.emplace_back("drive_n", drive_waveform());
       in.push_back(through("drive_n", Setting::alpha2));
     }
+    if (has(Setting::alpha_speed_p)) in.push_back(through("wp", Setting::alpha_speed_p));
     if (has(Setting::alpha1)) in.push_back(through("sign_p", Setting::alpha1));
     in.push_back(through("m", Setting::alpha3));
     amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
@@ -97,6 +101,7 @@ class Builder {
   void add_secondary() {  // (6.2): φ̇s' = (M0 − M_Rz − M_Rs − M_Re − M_L)/Θs
     std::vector<AmplifierInput> in{through("m_n", Setting::alpha4)};
     if (has(Setting::alpha5)) in.push_back(through("sign_s", Setting::alpha5));
+    if (has(Setting::alpha_viscous_s)) in.push_back(through("ws", Setting::alpha_viscous_s));
     if (has(Setting::alpha_tooth)) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
       in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
       in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
@@ -114,6 +119,20 @@ class Builder {
     amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
     c_.initial_conditions.emplace_back("ws", initial(Setting::alpha7));
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
+  }
+
+  /// The drive profile in machine time and units, inverted like the DC
+  /// drive source; a step (two points at one time) rises in a billionth of
+  /// the run, since a PWL source needs increasing times.
+  std::vector<std::pair<double, double>> drive_waveform() const {
+    std::vector<std::pair<double, double>> w;
+    const double rise = 1e-9 * patch_.beta * patch_.duration;
+    for (const auto& [t, torque] : patch_.drive_profile.points()) {
+      double time = patch_.beta * t;
+      if (!w.empty() && time <= w.back().first) time = w.back().first + rise;
+      w.emplace_back(time, 0.0 - torque / patch_.maxima.drive_torque);  // no "-0" in the deck
+    }
+    return w;
   }
 
   void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)

@@ -59,6 +59,7 @@ const std::map<std::string, std::string>& scene_keys() {
       // units, referred to the primary by the tool; drive profiles; motor line.
       {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
       {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
+      {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
       {"load.backlash", "total play at the load shaft, rad or deg, >= 0: 2ε = i·play (instead of gear.backlash)"},
       {"load.bearing_friction", "N·m on the load shaft, >= 0: k_Rs = M/i (instead of friction.bearing_secondary)"},
       {"load.torque", "N·m on the load shaft: M_L = M/i (instead of drive.load_torque)"},
@@ -257,7 +258,7 @@ class Reader {
 void read_gear(const Reader& r, Scene& s) {
   s.inertia_primary = r.positive("gear.inertia_primary");
   if (!r.has("load.inertia")) s.inertia_secondary = r.positive("gear.inertia_secondary");
-  s.stiffness = r.positive("gear.stiffness");
+  if (!r.has("load.stiffness")) s.stiffness = r.positive("gear.stiffness");
   s.backlash = r.non_negative("gear.backlash", 0);
   s.restitution = r.number("gear.restitution");
   s.damping = r.number("gear.damping");
@@ -354,6 +355,8 @@ void read_load_shaft(const Reader& r, Scene& s) {
     r.positive("load.inertia");
   }
   refer(r, s, "load.inertia", "gear.inertia_secondary", 1 / (i * i), "Θs kg·m²", "J/i²", s.inertia_secondary);
+  if (r.has("load.stiffness")) r.positive("load.stiffness");
+  refer(r, s, "load.stiffness", "gear.stiffness", 1 / (i * i), "c N·m/rad", "c/i²", s.stiffness);
   refer(r, s, "load.backlash", "gear.backlash", i, "2ε rad", "i·play", s.backlash);
   refer(r, s, "load.bearing_friction", "friction.bearing_secondary", 1 / i, "k_Rs N·m", "M/i", s.bearing_secondary);
   refer(r, s, "load.torque", "drive.load_torque", 1 / i, "M_L N·m", "M/i", s.load_torque, false);

@@ -318,6 +318,10 @@ std::string adaptive_reason(const GearParameters& p) {
   return why.empty() ? why : "the exact solver integrates constant forcing only; this scene has " + why;
 }
 
+std::unique_ptr<Stepper> make_reference_stepper(const GearParameters& p, double tolerance) {
+  return p.forcing_constant_in_modes() ? make_exact_stepper() : make_adaptive_stepper(tolerance);
+}
+
 SolverKind parse_solver(const std::string& name) {
   if (name == "exact") return SolverKind::exact;
   if (name == "adaptive") return SolverKind::adaptive;

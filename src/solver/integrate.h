@@ -71,6 +71,10 @@ SolverKind parse_solver(const std::string& name);
 /// Why a scene needs the adaptive solver (empty when the exact one can run).
 std::string adaptive_reason(const GearParameters& p);
 
+/// The reference solver for these parameters: the exact one when every mode
+/// is linear with constant forcing, else the adaptive one at `tolerance`.
+std::unique_ptr<Stepper> make_reference_stepper(const GearParameters& p, double tolerance = 1e-10);
+
 /// The one-call entry point: integrate with the named solver and record; the
 /// exact solver falls back to the adaptive one (saying why in solver_note)
 /// for a scene whose modes are not linear with constant forcing.
