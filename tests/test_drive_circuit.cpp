@@ -48,3 +48,10 @@ TEST_CASE("each drive feature gets its circuit only when the scene has it", "[dr
   CHECK(conveyor.find("sign_s") != std::string::npos);
   CHECK(conveyor.find("alpha_load") == std::string::npos);
 }
+
+TEST_CASE("the capped law is refused by the circuit, naming the key", "[drive][ngspice]") {
+  auto ngspice = spice::make_batch_ngspice();
+  const std::string file = testing::source_path("scenes/drive/capped.ini");
+  CHECK_THROWS_WITH(verify::verify(load_scene(file), {}, *ngspice),
+                    Catch::StartsWith(file + ":15: gear.contact_law = capped: the circuit realises"));
+}

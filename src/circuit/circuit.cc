@@ -258,6 +258,11 @@ double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; 
 double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
 
 Circuit build_circuit(const Patch& patch, Level level) {
+  if (patch.capped_contact)  // said plainly rather than patched with the paper's law
+    throw Error::about_scene("gear.contact_law",
+                             "gear.contact_law = capped: the circuit realises the paper's contact "
+                             "law only; the capped law runs in the reference (simulate) but has no "
+                             "analog realisation yet");
   return Builder(patch, level).build();
 }
 

@@ -21,6 +21,10 @@ std::string to_string(GuardKind k) {
     case GuardKind::secondary_breaks_backward: return "secondary-breaks-";
     case GuardKind::torque_reverses: return "torque-reverses";
     case GuardKind::drive_breakpoint: return "drive-breakpoint";
+    case GuardKind::damping_capped: return "damping-capped";
+    case GuardKind::damping_uncapped: return "damping-uncapped";
+    case GuardKind::flanks_part: return "flanks-part";
+    case GuardKind::flanks_press: return "flanks-press";
   }
   return "?";
 }
@@ -39,18 +43,50 @@ ModeDynamics GearModel::dynamics(const Mode& m, double t) const {
   d.force_s = -p_.load_torque - p_.bearing_secondary * direction(m.secondary);
   // (5.5): M0 − k_z·|M0|·sign φ̇s = M0·(1 − k_z·sign M0·sign φ̇s).
   d.gain_s = 1.0 - p_.tooth_friction * m.torque_sign * direction(m.secondary);
-  d.coupled = in_contact(m.contact);
+  d.coupled = in_contact(m.contact) && m.phase != Phase::parted;
   d.offset = m.contact == Contact::positive ? p_.half_backlash
            : m.contact == Contact::negative ? -p_.half_backlash : 0.0;
-  d.stiffness = p_.stiffness;
-  d.damping = p_.damping;
+  // The capped law within a phase is linear too: 2c without damping, or nothing.
+  d.stiffness = m.phase == Phase::capped ? 2 * p_.stiffness : p_.stiffness;
+  d.damping = m.phase == Phase::capped ? 0.0 : p_.damping;
   return d;
 }
 
 LinearForm GearModel::torque_form(const Mode& m) const {
-  if (!in_contact(m.contact)) return {};
+  if (!in_contact(m.contact) || m.phase == Phase::parted) return {};
+  const ModeDynamics d = dynamics(m);
+  return {d.damping, -d.damping, d.stiffness, -d.stiffness * d.offset};
+}
+
+/// The capped law's phase at a state in contact: parted where spring and
+/// damper would pull, capped where the damping torque exceeds the spring
+/// torque (so at every impact with d > 0), else spring and damper.
+Phase GearModel::entry_phase(const Mode& m, const GearState& s) const {
+  if (!p_.capped_contact || !in_contact(m.contact) || m.contact == Contact::linear)
+    return Phase::spring_damper;
+  const double sigma = engagement(m), spring = p_.stiffness * contact_twist(s.dphi);
+  const double damping = p_.damping * (s.omega_p - s.omega_s);
+  if (sigma * (spring + damping) < 0 || (spring == 0 && damping == 0)) return Phase::parted;
+  return sigma * (damping - spring) > 0 ? Phase::capped : Phase::spring_damper;
+}
+
+/// The capped law's phase guards, σ the side: spring_damper ends when σ(c·u − d·u̇)
+/// or σ(c·u + d·u̇) falls below 0, capped when σ(d·u̇ − c·u) does, parted when
+/// the law would push again, −σ(c·u + d·u̇) < 0.
+void GearModel::capped_guards(const Mode& m, std::vector<Guard>& g) const {
+  const double sigma = engagement(m), c = p_.stiffness, d = p_.damping;
   const double offset = dynamics(m).offset;
-  return {p_.damping, -p_.damping, p_.stiffness, -p_.stiffness * offset};
+  const LinearForm push{sigma * d, -sigma * d, sigma * c, -sigma * c * offset};    // σ(cu + du̇)
+  const LinearForm spring{-sigma * d, sigma * d, sigma * c, -sigma * c * offset};  // σ(cu − du̇)
+  auto negated = [](LinearForm f) { return LinearForm{-f.omega_p, -f.omega_s, -f.dphi, -f.constant}; };
+  switch (m.phase) {
+    case Phase::spring_damper:
+      g.push_back({GuardKind::damping_capped, spring});
+      g.push_back({GuardKind::flanks_part, push});
+      break;
+    case Phase::capped: g.push_back({GuardKind::damping_uncapped, negated(spring)}); break;
+    case Phase::parted: g.push_back({GuardKind::flanks_press, negated(push)}); break;
+  }
 }
 
 GearState GearModel::derivative(const Mode& m, const GearState& s, double t) const {
@@ -75,6 +111,7 @@ std::vector<Guard> GearModel::guards(const Mode& m, double t) const {
     case Contact::negative: g.push_back({GuardKind::release, {0, 0, -1, -eps}}); break;
     case Contact::linear: break;
   }
+  if (p_.capped_contact && in_contact(m.contact) && m.contact != Contact::linear) capped_guards(m, g);
   const LinearForm m0 = torque_form(m);
   auto combine = [](double a, const LinearForm& f, double k) {  // a·f + k
     return LinearForm{a * f.omega_p, a * f.omega_s, a * f.dphi, a * f.constant + k};
@@ -168,6 +205,7 @@ Mode GearModel::initial_mode(GearState& s) const {
   } else {
     m.contact = Contact::free;
   }
+  m.phase = entry_phase(m, s);
   auto start = [](bool friction, double omega) {
     if (!friction) return Shaft::frictionless;
     return omega > 0 ? Shaft::forward : omega < 0 ? Shaft::backward : Shaft::held;
@@ -205,7 +243,12 @@ Mode GearModel::cross(const Mode& from, GuardKind kind, GearState& s, double t) 
     case GuardKind::drive_breakpoint:  // the drive jumped or bent: a held shaft may break away
       settle(m, s, t);
       return m;
+    case GuardKind::damping_capped: m.phase = Phase::capped; return m;
+    case GuardKind::damping_uncapped: m.phase = Phase::spring_damper; return m;
+    case GuardKind::flanks_part: m.phase = Phase::parted; return m;
+    case GuardKind::flanks_press: m.phase = Phase::spring_damper; return m;
   }
+  if (m.contact != from.contact) m.phase = entry_phase(m, s);
   if (m.contact != from.contact) settle(m, s, t);
   else m.torque_sign = torque_sign_at(m, s);
   return m;

@@ -19,6 +19,9 @@ struct GearParameters {
   double bearing_secondary = 0;  ///< k_Rs
   double tooth_friction = 0;     ///< k_z = 1 − η_z, (5.6)
   bool self_locking = false;
+  /// The capped contact law (Modelica's ElastoBacklash) instead of the paper's:
+  /// M0 = M_c + min(M_c, M_d) on the positive side, 0 where that would pull.
+  bool capped_contact = false;
   double drive_torque = 0;       ///< M_a
   double load_torque = 0;        ///< on the secondary, opposing positive rotation
 
@@ -72,6 +75,7 @@ enum class GuardKind {
   secondary_breaks_forward, secondary_breaks_backward,
   torque_reverses,
   drive_breakpoint,  ///< a corner or step of the drive profile: not a guard, a time event
+  damping_capped, damping_uncapped, flanks_part, flanks_press,  ///< the capped law's phases
 };
 std::string to_string(GuardKind);
 
@@ -127,6 +131,8 @@ class GearModel {
   Shaft resolve_secondary(const Mode& mode, const GearState& s) const;
   int torque_sign_at(const Mode& mode, const GearState& s) const;
   int engagement(const Mode& mode) const;
+  Phase entry_phase(const Mode& mode, const GearState& s) const;
+  void capped_guards(const Mode& mode, std::vector<Guard>& g) const;
   void settle(Mode& mode, GearState& s, double t) const;
 
   GearParameters p_;

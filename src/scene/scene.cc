@@ -57,6 +57,7 @@ const std::map<std::string, std::string>& scene_keys() {
       {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
       // What a drive engineer brings (issue 14): values in each shaft's own
       // units, referred to the primary by the tool; drive profiles; motor line.
+      {"gear.contact_law", "paper|capped (default paper): capped is Modelica's ElastoBacklash, the damping torque capped at the spring torque and no pull; k is inverted for the law chosen"},
       {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
       {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
       {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
@@ -424,6 +425,15 @@ void read_drive_engineer(const Reader& r, Scene& s) {
     if (s.extras.reactive_load && s.load_torque < 0)
       r.fail(r.has("load.torque") ? "load.torque" : "drive.load_torque",
              "a reactive load is a magnitude (it opposes whichever way the shaft turns): must be >= 0");
+  }
+  if (r.has("gear.contact_law")) {
+    const std::string law = r.raw("gear.contact_law");
+    if (law != "paper" && law != "capped") r.fail("gear.contact_law", "must be paper or capped");
+    s.extras.capped_contact = law == "capped";
+    if (s.extras.capped_contact && s.backlash == 0)
+      r.fail("gear.contact_law", "the capped law needs backlash > 0 (gear.backlash or load.backlash)");
+    if (s.extras.capped_contact && s.restitution && *s.restitution == 0)
+      r.fail("gear.restitution", "the capped law reaches k = 0 only with infinite damping: must be > 0");
   }
   s.extras.viscous_primary = r.non_negative("friction.viscous_primary", 0);
   if (r.has("friction.viscous_secondary"))

@@ -32,6 +32,7 @@ struct DriveExtras {
   double viscous_primary = 0;           ///< b_p, N·m·s/rad
   double viscous_secondary = 0;         ///< b_s referred to the primary
   bool reactive_load = false;           ///< the load resists motion, never drives it
+  bool capped_contact = false;          ///< gear.contact_law = capped (ElastoBacklash)
 };
 
 /// A gear drive as the user describes it in a scene file: the equivalent

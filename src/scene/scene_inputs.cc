@@ -1,5 +1,6 @@
 #include "scene/scene_inputs.h"
 
+#include "model/capped_restitution.h"
 #include "model/restitution.h"
 
 namespace gearpatch {
@@ -10,8 +11,11 @@ GearParameters gear_parameters(const Scene& s) {
   p.inertia_secondary = s.inertia_secondary;
   p.stiffness = s.stiffness;
   p.half_backlash = s.backlash / 2;
+  p.capped_contact = s.extras.capped_contact;
   p.damping = s.damping ? *s.damping
-                        : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
+              : p.capped_contact
+                  ? damping_for_capped_restitution(*s.restitution, s.stiffness, p.effective_inertia())
+                  : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
   p.bearing_primary = s.bearing_primary;
   p.bearing_secondary = s.bearing_secondary;
   p.tooth_friction = 1.0 - s.mesh_efficiency;

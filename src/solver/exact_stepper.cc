@@ -36,7 +36,8 @@ class ExactSegment : public Segment {
     end_ = t0;
     step_ = oscillator_.sampling_step();
     const double vertex = oscillator_.vertex();
-    if (!d.coupled && vertex > 0 && t0 + vertex < horizon) vertex_ = t0 + vertex;
+    if (!d.coupled && vertex > 0 && t0 + vertex < horizon) turns_.push_back(t0 + vertex);
+    if (!d.coupled && weight_ > 0) free_flight_turns(guards);
     if (step_ > 0) {
       for (const Guard& g : guards) shapes_.push_back(shape(g.form));
       wave_ = wave(0);
@@ -44,9 +45,10 @@ class ExactSegment : public Segment {
   }
 
   double advance() override {
-    if (step_ <= 0) {  // free flight: monotone guards on both sides of the vertex
-      end_ = end_ < vertex_ ? vertex_ : horizon_;
-      return end_;
+    if (step_ <= 0) {  // free flight: monotone guards between their turning points
+      for (double turn : turns_)
+        if (turn > end_) return end_ = turn;
+      return end_ = horizon_;
     }
     const double a = end_;
     const double b = std::min(horizon_, a + step_);
@@ -155,6 +157,21 @@ class ExactSegment : public Segment {
 
   double kappa() const { return oscillator_.kappa(); }
 
+  /// In free flight each guard is a parabola in τ (the twist is one, the speeds
+  /// are affine); its vertex, where g' = l1 + p·u' + q·f = 0, splits it into
+  /// monotone pieces. The contact guards turn with the twist; the capped
+  /// law's guards on c·u ± d·u̇ turn elsewhere.
+  void free_flight_turns(const std::vector<Guard>& guards) {
+    const double f = force_, v0 = s0_.omega_p - s0_.omega_s;
+    for (const Guard& g : guards) {
+      const Shape s = shape(g.form);
+      if (s.p * f == 0) continue;
+      const double tau = -(s.l1 + s.p * v0 + s.q * f) / (s.p * f);
+      if (tau > 0 && t0_ + tau < horizon_) turns_.push_back(t0_ + tau);
+    }
+    std::sort(turns_.begin(), turns_.end());
+  }
+
   /// The closed form at τ; the last one is kept, since the event locator asks
   /// for the state at each interval end right after advance() computed it.
   const ForcedOscillator::Values& values(double tau) const {
@@ -262,7 +279,7 @@ class ExactSegment : public Segment {
   ForcedOscillator oscillator_;
   double step_ = 0;
   double end_;
-  double vertex_ = -1;
+  std::vector<double> turns_;  ///< free flight: where a guard may turn, in order
   std::vector<Shape> shapes_;
   Wave wave_;  ///< at end_
   mutable double cached_tau_ = std::numeric_limits<double>::quiet_NaN();
