@@ -160,10 +160,12 @@ class ExactSegment : public Segment {
   /// In free flight each guard is a parabola in τ (the twist is one, the speeds
   /// are affine); its vertex, where g' = l1 + p·u' + q·f = 0, splits it into
   /// monotone pieces. The contact guards turn with the twist; the capped
-  /// law's guards on c·u ± d·u̇ turn elsewhere.
+  /// law's parted phase watches c·u + d·u̇, which turns elsewhere.
   void free_flight_turns(const std::vector<Guard>& guards) {
     const double f = force_, v0 = s0_.omega_p - s0_.omega_s;
     for (const Guard& g : guards) {
+      // The others are monotone on both sides of the twist's vertex.
+      if (g.kind != GuardKind::flanks_press) continue;
       const Shape s = shape(g.form);
       if (s.p * f == 0) continue;
       const double tau = -(s.l1 + s.p * v0 + s.q * f) / (s.p * f);
