@@ -198,3 +198,25 @@ TEST_CASE("the capped law's damping gives the requested restitution to 1e-9", "[
     for (const Sample& x : t.samples) CHECK(x.m0 * x.dphi >= 0);
   }
 }
+
+TEST_CASE("a shaft slides to rest on its Stribeck curve as in closed form", "[drive]") {
+  // Θ·φ̇' = −(k_C + Δ·e^{−φ̇/φ̇_S}); with y = e^{φ̇/φ̇_S} it is linear, y' = −(k_C·y + Δ)/(Θ·φ̇_S),
+  // so the primary stops at t = (Θ·φ̇_S/k_C)·ln((y0 + Δ/k_C)/(1 + Δ/k_C)).
+  const double theta = 1, kc = 0.2, ks = 0.5, ws = 0.5, w0 = 2;
+  const Scene s = parse_scene(gear + "backlash = 20\n[friction]\nbearing_primary = 0.5\n"
+                              "characteristic = stribeck\nsliding_primary = 0.2\nstribeck_speed = 0.5\n"
+                              "[initial]\nspeed_primary = 2\n[run]\nduration = 10\n", "stribeck.ini");
+  const Trajectory t = run(s);
+  CHECK(!t.closed_form);
+  CHECK(t.solver_note.find("Stribeck") != std::string::npos);
+  const double delta = ks - kc, y0 = std::exp(w0 / ws);
+  const double stop = theta * ws / kc * std::log((y0 + delta / kc) / (1 + delta / kc));
+  REQUIRE(!t.events.empty());
+  CHECK(t.events[0].kind == GuardKind::primary_stops);
+  CHECK(t.events[0].t == Approx(stop).epsilon(1e-8));
+  CHECK(t.events[0].mode_after.primary == Shaft::held);  // 0 N·m cannot break 0.5 N·m away
+  CHECK(error_of(gear + "[friction]\nbearing_primary = 0.5\ncharacteristic = stribeck\n"
+                        "sliding_primary = 0.7\nstribeck_speed = 1\n[run]\nduration = 1\n") ==
+        "bad.ini:9: friction.sliding_primary = 0.7: must not exceed the break-away level "
+        "friction.bearing_primary");
+}

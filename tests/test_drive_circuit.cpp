@@ -55,3 +55,12 @@ TEST_CASE("the capped law is refused by the circuit, naming the key", "[drive][n
   CHECK_THROWS_WITH(verify::verify(load_scene(file), {}, *ngspice),
                     Catch::StartsWith(file + ":15: gear.contact_law = capped: the circuit realises"));
 }
+
+TEST_CASE("Stribeck bearings are refused by the circuit, naming the key", "[drive]") {
+  const std::string file = testing::source_path("scenes/drive/stribeck.ini");
+  const Scene scene = load_scene(file);
+  CHECK_THROWS_WITH(with_scene(scene, [&] {
+                      return circuit::build_circuit(make_patch(scene), circuit::Level::ideal);
+                    }),
+                    Catch::StartsWith(file + ":16: friction.characteristic = stribeck: the circuit"));
+}

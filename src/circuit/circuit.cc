@@ -263,6 +263,11 @@ Circuit build_circuit(const Patch& patch, Level level) {
                              "gear.contact_law = capped: the circuit realises the paper's contact "
                              "law only; the capped law runs in the reference (simulate) but has no "
                              "analog realisation yet");
+  if (patch.stribeck)
+    throw Error::about_scene("friction.characteristic",
+                             "friction.characteristic = stribeck: the circuit realises Coulomb "
+                             "friction only; Stribeck bearings run in the reference (simulate) but "
+                             "have no diode function generator yet");
   return Builder(patch, level).build();
 }
 

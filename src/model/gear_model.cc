@@ -93,8 +93,11 @@ GearState GearModel::derivative(const Mode& m, const GearState& s, double t) con
   const ModeDynamics d = dynamics(m, t);
   const double m0 = torque(m, s);
   // The motor line and viscous friction: torques proportional to each shaft's speed.
-  const double feedback_p = p_.primary_speed_feedback() * s.omega_p;
-  const double feedback_s = p_.viscous_secondary * s.omega_s;
+  // Stribeck bearings slide against less than their break-away level.
+  const double feedback_p = p_.primary_speed_feedback() * s.omega_p -
+      direction(m.primary) * p_.stribeck_relief(p_.bearing_primary, p_.sliding_primary, s.omega_p);
+  const double feedback_s = p_.viscous_secondary * s.omega_s -
+      direction(m.secondary) * p_.stribeck_relief(p_.bearing_secondary, p_.sliding_secondary, s.omega_s);
   return {d.inv_p * (d.force_p - feedback_p - m0),
           d.inv_s * (d.gain_s * m0 + d.force_s - feedback_s), s.omega_p - s.omega_s};
 }
@@ -288,6 +291,7 @@ std::vector<std::string> GearModel::active_terms() const {
   if (p_.viscous_secondary > 0) t.push_back("secondary viscous friction");
   if (p_.load_torque != 0) t.push_back("load torque");
   if (p_.reactive_load > 0) t.push_back("reactive load torque (with the secondary friction)");
+  if (p_.stribeck()) t.push_back("Stribeck bearing friction");
   return t;
 }
 

@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -31,6 +32,15 @@ struct GearParameters {
   double viscous_primary = 0;    ///< b_p, N·m·s/rad
   double viscous_secondary = 0;  ///< b_s, N·m·s/rad, referred to the primary
   double reactive_load = 0;      ///< the share of bearing_secondary that is a reactive load
+  /// Stribeck bearings: bearing_primary/secondary are then the break-away
+  /// levels k_S, and a sliding shaft meets k_C + (k_S − k_C)·exp(−|φ̇|/φ̇_S).
+  double sliding_primary = 0, sliding_secondary = 0;  ///< k_C, N·m
+  double stribeck_speed = 0;     ///< φ̇_S, rad/s; 0: Coulomb bearings
+  bool stribeck() const { return stribeck_speed > 0; }
+  /// The friction level of a sliding shaft below its break-away level k_S.
+  double stribeck_relief(double breakaway, double sliding, double omega) const {
+    return stribeck() ? (breakaway - sliding) * -std::expm1(-std::abs(omega) / stribeck_speed) : 0.0;
+  }
 
   double effective_inertia() const;  ///< Θ = ΘpΘs/(Θp+Θs)
   /// M_a at t at standstill of the primary (the motor line's stall torque).
@@ -48,7 +58,7 @@ struct GearParameters {
   /// or viscous friction (those run on the adaptive solver).
   bool forcing_constant_in_modes() const {
     return drive_profile.piecewise_constant() && primary_speed_feedback() == 0 &&
-           viscous_secondary == 0;
+           viscous_secondary == 0 && !stribeck();
   }
   bool primary_has_friction() const { return bearing_primary > 0; }
   bool secondary_has_friction() const {

@@ -58,6 +58,10 @@ const std::map<std::string, std::string>& scene_keys() {
       // What a drive engineer brings (issue 14): values in each shaft's own
       // units, referred to the primary by the tool; drive profiles; motor line.
       {"gear.contact_law", "paper|capped (default paper): capped is Modelica's ElastoBacklash, the damping torque capped at the spring torque and no pull; k is inverted for the law chosen"},
+      {"friction.characteristic", "coulomb|stribeck (default coulomb; add viscous_* for Coulomb + viscous): with stribeck, bearing_* are the break-away levels k_S"},
+      {"friction.sliding_primary", "k_C, N·m, the primary's sliding level at high speed, 0 <= k_C <= bearing_primary (stribeck)"},
+      {"friction.sliding_secondary", "k_C, N·m referred, the secondary's sliding level, 0 <= k_C <= bearing_secondary (stribeck)"},
+      {"friction.stribeck_speed", "φ̇_S, rad/s or rpm, > 0: the level falls as k_C + (k_S − k_C)·exp(−|φ̇|/φ̇_S) (stribeck)"},
       {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
       {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
       {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
@@ -415,6 +419,24 @@ void read_drive_profile(const Reader& r, Scene& s) {
     if (std::abs(m) > std::abs(s.drive_torque)) s.drive_torque = m;
 }
 
+/// A Stribeck dip: the sliding levels below the break-away levels and the speed it decays over.
+void read_stribeck(const Reader& r, Scene& s) {
+  const std::string kind = r.has("friction.characteristic") ? r.raw("friction.characteristic") : "coulomb";
+  if (kind != "coulomb" && kind != "stribeck")
+    r.fail("friction.characteristic", "must be coulomb or stribeck");
+  for (const char* key : {"friction.sliding_primary", "friction.sliding_secondary", "friction.stribeck_speed"})
+    if (r.has(key) && kind != "stribeck") r.fail(key, "only with friction.characteristic = stribeck");
+  if (kind != "stribeck") return;
+  DriveExtras& x = s.extras;
+  x.stribeck_speed = r.positive("friction.stribeck_speed");
+  x.sliding_primary = r.non_negative("friction.sliding_primary", s.bearing_primary);
+  x.sliding_secondary = r.non_negative("friction.sliding_secondary", s.bearing_secondary);
+  if (x.sliding_primary > s.bearing_primary)
+    r.fail("friction.sliding_primary", "must not exceed the break-away level friction.bearing_primary");
+  if (x.sliding_secondary > s.bearing_secondary)
+    r.fail("friction.sliding_secondary", "must not exceed the break-away level friction.bearing_secondary");
+}
+
 /// gear.ratio, [load], drive.load, drive.profile and viscous friction (issue 14).
 void read_drive_engineer(const Reader& r, Scene& s) {
   read_load_shaft(r, s);
@@ -435,6 +457,7 @@ void read_drive_engineer(const Reader& r, Scene& s) {
     if (s.extras.capped_contact && s.restitution && *s.restitution == 0)
       r.fail("gear.restitution", "the capped law reaches k = 0 only with infinite damping: must be > 0");
   }
+  read_stribeck(r, s);
   s.extras.viscous_primary = r.non_negative("friction.viscous_primary", 0);
   if (r.has("friction.viscous_secondary"))
     s.extras.viscous_secondary = r.non_negative("friction.viscous_secondary", 0);

@@ -33,6 +33,8 @@ struct DriveExtras {
   double viscous_secondary = 0;         ///< b_s referred to the primary
   bool reactive_load = false;           ///< the load resists motion, never drives it
   bool capped_contact = false;          ///< gear.contact_law = capped (ElastoBacklash)
+  double sliding_primary = 0, sliding_secondary = 0;  ///< Stribeck: k_C, N·m (referred)
+  double stribeck_speed = 0;            ///< φ̇_S, rad/s; 0 for Coulomb bearings
 };
 
 /// A gear drive as the user describes it in a scene file: the equivalent

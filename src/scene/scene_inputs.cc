@@ -27,9 +27,13 @@ GearParameters gear_parameters(const Scene& s) {
   p.motor_slope = x.motor_slope;
   p.viscous_primary = x.viscous_primary;
   p.viscous_secondary = x.viscous_secondary;
+  p.stribeck_speed = x.stribeck_speed;
+  p.sliding_primary = x.sliding_primary;
+  p.sliding_secondary = x.sliding_secondary;
   if (x.reactive_load) {  // resists motion like friction: the secondary's friction level
     p.reactive_load = s.load_torque;
     p.bearing_secondary += s.load_torque;
+    p.sliding_secondary += s.load_torque;  // a reactive load has no Stribeck dip
     p.load_torque = 0;
   }
   return p;

@@ -315,6 +315,7 @@ std::string adaptive_reason(const GearParameters& p) {
   add(!p.drive_profile.piecewise_constant(), "a drive that ramps");
   add(p.motor_slope > 0, "the motor line");
   add(p.viscous_primary > 0 || p.viscous_secondary > 0, "viscous friction");
+  add(p.stribeck(), "Stribeck friction");
   return why.empty() ? why : "the exact solver integrates constant forcing only; this scene has " + why;
 }
 
