@@ -220,3 +220,20 @@ TEST_CASE("a shaft slides to rest on its Stribeck curve as in closed form", "[dr
         "bad.ini:9: friction.sliding_primary = 0.7: must not exceed the break-away level "
         "friction.bearing_primary");
 }
+
+TEST_CASE("a stages file feeds the scene's coupling by (2.8)", "[drive]") {
+  testing::TempFolder dir("drive-stages");
+  write_text(dir / "train.ini", "[stage]\nstiffness = 400\ndamping = 0.4\n[stage]\nstiffness = 150\n"
+                                "damping = 1.5\n[stage]\nstiffness = 600\ndamping = 0.6\n");
+  write_text(dir / "scene.ini", "[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstages = train.ini\n"
+                                "backlash = 1 deg\n[run]\nduration = 1\n");
+  const Scene s = load_scene(dir / "scene.ini");
+  CHECK(s.stiffness == Approx(1 / (1 / 400.0 + 1 / 150.0 + 1 / 600.0)).epsilon(1e-14));
+  CHECK(*s.damping == Approx(1 / (1 / 0.4 + 1 / 1.5 + 1 / 0.6)).epsilon(1e-14));
+  CHECK(error_of("[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstages = x.ini\nstiffness = 5\n"
+                 "[run]\nduration = 1\n")
+            .find("bad.ini:5: gear.stiffness = 5: give either gear.stages") == 0);
+  CHECK(error_of("[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstages = missing.ini\n"
+                 "[run]\nduration = 1\n")
+            .find("bad.ini:4: gear.stages = missing.ini: ") == 0);
+}

@@ -14,6 +14,7 @@
 #include "common/numbers.h"
 #include "common/utf8.h"
 #include "common/option_error.h"
+#include "model/stage_reduction.h"
 #include "scene/drive_table.h"
 #include "scene/units.h"
 
@@ -62,6 +63,7 @@ const std::map<std::string, std::string>& scene_keys() {
       {"friction.sliding_primary", "k_C, N·m, the primary's sliding level at high speed, 0 <= k_C <= bearing_primary (stribeck)"},
       {"friction.sliding_secondary", "k_C, N·m referred, the secondary's sliding level, 0 <= k_C <= bearing_secondary (stribeck)"},
       {"friction.stribeck_speed", "φ̇_S, rad/s or rpm, > 0: the level falls as k_C + (k_S − k_C)·exp(−|φ̇|/φ̇_S) (stribeck)"},
+      {"gear.stages", "file of [stage] stiffness, damping sections referred to the primary (as for `gearpatch reduce`; path relative to the scene): c and d of the equivalent gear by (2.8), instead of gear.stiffness and restitution/damping"},
       {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
       {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
       {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
@@ -263,6 +265,12 @@ class Reader {
 void read_gear(const Reader& r, Scene& s) {
   s.inertia_primary = r.positive("gear.inertia_primary");
   if (!r.has("load.inertia")) s.inertia_secondary = r.positive("gear.inertia_secondary");
+  if (r.has("gear.stages")) {  // c and d come from the stages (read_stages)
+    for (const char* key : {"gear.stiffness", "gear.restitution", "gear.damping", "load.stiffness"})
+      if (r.has(key)) r.fail(key, "give either gear.stages or the coupling's stiffness and damping, not both");
+    s.backlash = r.non_negative("gear.backlash", 0);
+    return;
+  }
   if (!r.has("load.stiffness")) s.stiffness = r.positive("gear.stiffness");
   s.backlash = r.non_negative("gear.backlash", 0);
   s.restitution = r.number("gear.restitution");
@@ -419,6 +427,20 @@ void read_drive_profile(const Reader& r, Scene& s) {
     if (std::abs(m) > std::abs(s.drive_torque)) s.drive_torque = m;
 }
 
+/// gear.stages: n elastic members in series reduced to one c, d by (2.8).
+void read_stages(const Reader& r, Scene& s) {
+  if (!r.has("gear.stages")) return;
+  std::filesystem::path file = r.raw("gear.stages");
+  if (file.is_relative()) file = std::filesystem::path(s.source).parent_path() / file;
+  try {
+    const StageReduction reduced = reduce_stages(load_stages(file.string()));
+    s.stiffness = reduced.stiffness;
+    s.damping = reduced.damping;
+  } catch (const Error& e) {
+    r.fail("gear.stages", e.what());
+  }
+}
+
 /// A Stribeck dip: the sliding levels below the break-away levels and the speed it decays over.
 void read_stribeck(const Reader& r, Scene& s) {
   const std::string kind = r.has("friction.characteristic") ? r.raw("friction.characteristic") : "coulomb";
@@ -439,6 +461,7 @@ void read_stribeck(const Reader& r, Scene& s) {
 
 /// gear.ratio, [load], drive.load, drive.profile and viscous friction (issue 14).
 void read_drive_engineer(const Reader& r, Scene& s) {
+  read_stages(r, s);
   read_load_shaft(r, s);
   if (r.has("drive.load")) {
     const std::string kind = r.raw("drive.load");
