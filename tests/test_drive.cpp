@@ -235,5 +235,7 @@ TEST_CASE("a stages file feeds the scene's coupling by (2.8)", "[drive]") {
             .find("bad.ini:5: gear.stiffness = 5: give either gear.stages") == 0);
   CHECK(error_of("[gear]\ninertia_primary = 1\ninertia_secondary = 1\nstages = missing.ini\n"
                  "[run]\nduration = 1\n")
-            .find("bad.ini:4: gear.stages = missing.ini: ") == 0);
+            .find("bad.ini:4: gear.stages = missing.ini: not a regular file") == 0);
+  CHECK(error_of(gear + "[drive]\nprofile = table\ntable = /dev/zero\n[run]\nduration = 1\n")
+            .find("bad.ini:8: drive.table = /dev/zero: not a regular file") == 0);
 }

@@ -408,6 +408,8 @@ void read_drive_profile(const Reader& r, Scene& s) {
     if (!r.has("drive.table")) r.required("drive.table");
     std::filesystem::path file = r.raw("drive.table");
     if (file.is_relative()) file = std::filesystem::path(s.source).parent_path() / file;
+    std::error_code ec;  // a device or FIFO would never end
+    if (!std::filesystem::is_regular_file(file, ec)) r.fail("drive.table", "not a regular file: " + file.string());
     try {
       points = load_drive_table(file.string());
     } catch (const Error& e) {
@@ -432,6 +434,8 @@ void read_stages(const Reader& r, Scene& s) {
   if (!r.has("gear.stages")) return;
   std::filesystem::path file = r.raw("gear.stages");
   if (file.is_relative()) file = std::filesystem::path(s.source).parent_path() / file;
+  std::error_code ec;  // a device or FIFO would never end
+  if (!std::filesystem::is_regular_file(file, ec)) r.fail("gear.stages", "not a regular file: " + file.string());
   try {
     const StageReduction reduced = reduce_stages(load_stages(file.string()));
     s.stiffness = reduced.stiffness;
