@@ -165,8 +165,43 @@ class Builder {
     } else {
       omit("damping path alpha14 and blocks 7/9: d = 0 (k = 1)");
     }
-    amplifier("sum_m0", false, "m_n", in, "(6.8) transmitted torque: m_n = -M0/M0m");
+    const bool capped = patch_.capped_contact && patch_.dead_zone && has(Setting::alpha14);
+    amplifier("sum_m0", false, capped ? "kv_n" : "m_n", in,
+              capped ? "(6.8) spring and damper: kv_n = -(s + q), s = c*dphi', q = d*dphi'' in contact"
+                     : "(6.8) transmitted torque: m_n = -M0/M0m");
+    if (capped) add_capped_law();
     inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
+  }
+
+  /// The capped law (Modelica's ElastoBacklash) from half-wave diodes:
+  /// M0 = relu(s + q − relu(q − s)) − relu(−(s + q) − relu(s − q)), which is
+  /// s + min(s, q) on the positive side, s + max(s, q) on the negative, and 0
+  /// where that would pull. Each relu is a halfwave block (pos = −max(in, 0),
+  /// neg = −min(in, 0)).
+  void add_capped_law() {
+    inverter("inv_kv", "kv_n", "kv", "kv = s + q");
+    amplifier("sum_cap_d", false, "cap_d_n",
+              {through("xp", Setting::alpha13), through("dw_n", Setting::alpha14, "damp_p"),
+               through("dw_n", Setting::alpha14, "damp_n")},
+              "capped law: cap_d_n = q - s");
+    block("cap_half_d", BlockKind::halfwave, {"cap_d_n", "cap_r1_n", "cap_r2"}, "",
+          "capped law: cap_r1_n = -relu(q - s), cap_r2 = relu(s - q)");
+    // Each side's half is switched on only while its flanks touch (the damping
+    // comparators): on the other side it would reach 2|s| and overload.
+    amplifier("sum_cap_g", false, "cap_g_n",
+              {{"kv", std::nullopt, 1, "damp_p"}, {"cap_r1_n", std::nullopt, 1, "damp_p"}},
+              "capped law: cap_g_n = -(s + q - relu(q - s)) while X' > delta1");
+    block("cap_half_g", BlockKind::halfwave, {"cap_g_n", "cap_g_low", "cap_push_p"}, "",
+          "capped law: cap_push_p = relu(s + q - relu(q - s)), the positive side's torque");
+    inverter("inv_kv2", "kv_n", "kv2", "kv2 = s + q, for the negative side");
+    amplifier("sum_cap_h", false, "cap_h",
+              {{"kv2", std::nullopt, 1, "damp_n"}, {"cap_r2", std::nullopt, 1, "damp_n"}},
+              "capped law: cap_h = -(s + q) - relu(s - q) while X' < -delta1");
+    block("cap_half_h", BlockKind::halfwave, {"cap_h", "cap_push_n", "cap_h_low"}, "",
+          "capped law: cap_push_n = -relu(cap_h), the negative side's torque");
+    amplifier("sum_cap_m", false, "m_n",
+              {{"cap_push_p", std::nullopt, 1, ""}, {"cap_push_n", std::nullopt, 1, ""}},
+              "capped law: m_n = -M0/M0m");
   }
 
   /// Two comparators that tell which flanks touch: <name>_p while X' > δ,
@@ -258,11 +293,6 @@ double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; 
 double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
 
 Circuit build_circuit(const Patch& patch, Level level) {
-  if (patch.capped_contact)  // said plainly rather than patched with the paper's law
-    throw Error::about_scene("gear.contact_law",
-                             "gear.contact_law = capped: the circuit realises the paper's contact "
-                             "law only; the capped law runs in the reference (simulate) but has no "
-                             "analog realisation yet");
   if (patch.stribeck)
     throw Error::about_scene("friction.characteristic",
                              "friction.characteristic = stribeck: the circuit realises Coulomb "
