@@ -4,7 +4,9 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "circuit/stribeck_generator.h"
 #include "common/error.h"
+#include "scaling/table1.h"
 #include "scaling/patch.h"
 
 namespace gearpatch::circuit {
@@ -92,6 +94,8 @@ class Builder {
       in.push_back(through("drive_n", Setting::alpha2));
     }
     if (has(Setting::alpha_speed_p)) in.push_back(through("wp", Setting::alpha_speed_p));
+    if (has(Setting::alpha_stribeck_p))
+      stribeck_generator("p", "wp", patch_.maxima.speed_primary, Setting::alpha_stribeck_p, in);
     if (has(Setting::alpha1)) in.push_back(through("sign_p", Setting::alpha1));
     in.push_back(through("m", Setting::alpha3));
     amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
@@ -102,6 +106,8 @@ class Builder {
     std::vector<AmplifierInput> in{through("m_n", Setting::alpha4)};
     if (has(Setting::alpha5)) in.push_back(through("sign_s", Setting::alpha5));
     if (has(Setting::alpha_viscous_s)) in.push_back(through("ws", Setting::alpha_viscous_s));
+    if (has(Setting::alpha_stribeck_s))
+      stribeck_generator("s", "ws", patch_.maxima.speed_secondary, Setting::alpha_stribeck_s, in);
     if (has(Setting::alpha_tooth)) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
       in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
       in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
@@ -119,6 +125,23 @@ class Builder {
     amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
     c_.initial_conditions.emplace_back("ws", initial(Setting::alpha7));
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
+  }
+
+  /// The Stribeck dip as a diode function generator: n limiters on the speed
+  /// with the breakpoints of stribeck_breakpoints, each through the same
+  /// potentiometer, give back (k_S − k_C)·(1 − e^{−|φ̇|/φ̇_S})·sign φ̇ of the
+  /// break-away level block 2/14 takes off.
+  void stribeck_generator(const std::string& shaft, const std::string& speed, double full_scale,
+                          Setting pot, std::vector<AmplifierInput>& in) {
+    const std::vector<double> breaks = stribeck_breakpoints(stribeck_steps);
+    for (std::size_t i = 0; i < breaks.size(); ++i) {
+      const std::string out = fmt::format("strib_{}{}", shaft, i + 1);
+      const double band = breaks[i] * patch_.stribeck_speed / full_scale;
+      block(out, BlockKind::limiter, {speed, out}, format_band(band),
+            fmt::format("Stribeck generator, breakpoint {:.4g} rad/s: {} = -clip({}/band)",
+                        breaks[i] * patch_.stribeck_speed, out, speed));
+      in.push_back(through(out, pot));
+    }
   }
 
   /// The drive profile in machine time and units, inverted like the DC
@@ -293,11 +316,6 @@ double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; 
 double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
 
 Circuit build_circuit(const Patch& patch, Level level) {
-  if (patch.stribeck)
-    throw Error::about_scene("friction.characteristic",
-                             "friction.characteristic = stribeck: the circuit realises Coulomb "
-                             "friction only; Stribeck bearings run in the reference (simulate) but "
-                             "have no diode function generator yet");
   return Builder(patch, level).build();
 }
 

@@ -274,7 +274,7 @@ Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given
   patch.load_torque = p.load_torque;
   patch.drive_profile = p.drive_profile;
   patch.capped_contact = p.capped_contact;
-  patch.stribeck = p.stribeck();
+  patch.stribeck_speed = p.stribeck_speed;
   patch.duration = s.duration;
   patch.machine = s.machine;
   patch.k0 = s.machine.integrator_constant;

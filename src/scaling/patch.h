@@ -55,7 +55,7 @@ struct Patch {
   double load_torque = 0;   ///< its sign picks the reference alpha_load takes
   DriveProfile drive_profile;  ///< M_a(t) for a PWL drive source; empty: DC
   bool capped_contact = false;  ///< the capped law, which the circuit does not realise yet
-  bool stribeck = false;        ///< Stribeck bearings, which the circuit does not realise yet
+  double stribeck_speed = 0;    ///< φ̇_S of Stribeck bearings, rad/s; 0: Coulomb
   double duration = 1;      ///< s of real time
   MachineProfile machine;
   double beta = 1, k0 = 1, unit_volts = 10;
