@@ -75,3 +75,12 @@ TEST_CASE("the Stribeck function generator follows 1 - exp(-x) at its stated bre
   CHECK(deck.find("Xstrib_p16 wp strib_p16 gp_limiter") != std::string::npos);
   CHECK(deck.find("Xstrib_s1 ws strib_s1 gp_limiter") != std::string::npos);
 }
+
+TEST_CASE("verify says when its reference ran on the adaptive solver", "[drive][ngspice]") {
+  auto ngspice = spice::make_batch_ngspice();
+  CHECK(verify::to_table(verify::verify(drive_scene("startup"), {}, *ngspice))
+            .find("reference: adaptive solver (the exact solver integrates constant forcing only; "
+                  "this scene has the motor line, viscous friction)") != std::string::npos);
+  CHECK(verify::to_table(verify::verify(drive_scene("capped"), {}, *ngspice))
+            .find("reference: adaptive") == std::string::npos);
+}
