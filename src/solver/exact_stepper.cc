@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
@@ -36,7 +37,7 @@ class ExactSegment : public Segment {
     end_ = t0;
     step_ = oscillator_.sampling_step();
     const double vertex = oscillator_.vertex();
-    if (!d.coupled && vertex > 0 && t0 + vertex < horizon) turns_.push_back(t0 + vertex);
+    if (!d.coupled && vertex > 0 && t0 + vertex < horizon) turns_[turn_count_++] = t0 + vertex;
     if (!d.coupled && weight_ > 0) free_flight_turns(guards);
     if (step_ > 0) {
       for (const Guard& g : guards) shapes_.push_back(shape(g.form));
@@ -46,8 +47,8 @@ class ExactSegment : public Segment {
 
   double advance() override {
     if (step_ <= 0) {  // free flight: monotone guards between their turning points
-      for (double turn : turns_)
-        if (turn > end_) return end_ = turn;
+      for (int i = 0; i < turn_count_; ++i)
+        if (turns_[i] > end_) return end_ = turns_[i];
       return end_ = horizon_;
     }
     const double a = end_;
@@ -169,9 +170,9 @@ class ExactSegment : public Segment {
       const Shape s = shape(g.form);
       if (s.p * f == 0) continue;
       const double tau = -(s.l1 + s.p * v0 + s.q * f) / (s.p * f);
-      if (tau > 0 && t0_ + tau < horizon_) turns_.push_back(t0_ + tau);
+      if (tau > 0 && t0_ + tau < horizon_ && turn_count_ < max_turns) turns_[turn_count_++] = t0_ + tau;
     }
-    std::sort(turns_.begin(), turns_.end());
+    std::sort(turns_.begin(), turns_.begin() + turn_count_);
   }
 
   /// The closed form at τ; the last one is kept, since the event locator asks
@@ -281,7 +282,11 @@ class ExactSegment : public Segment {
   ForcedOscillator oscillator_;
   double step_ = 0;
   double end_;
-  std::vector<double> turns_;  ///< free flight: where a guard may turn, in order
+  // Free flight: where a guard may turn, in order; no heap per segment (the
+  // twist's vertex and the parted phase's one guard).
+  static constexpr int max_turns = 4;
+  std::array<double, max_turns> turns_{};
+  int turn_count_ = 0;
   std::vector<Shape> shapes_;
   Wave wave_;  ///< at end_
   mutable double cached_tau_ = std::numeric_limits<double>::quiet_NaN();
