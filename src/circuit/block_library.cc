@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <set>
 
 #include <fmt/format.h>
@@ -93,7 +94,7 @@ const std::vector<BlockInfo>& infos() {
 /// offset +- vsat*R1/R2 = offset +- comparator_hyst_mu.
 double comparator_r2(const MachineProfile& m) {
   using F = HardwareFigures;
-  return F::comparator_r1 * (m.supply_volts - F::opamp_headroom) / (F::comparator_hyst_mu * m.unit_volts);
+  return F::comparator_r1 * (m.supply_volts - F::opamp_headroom) / (m.comparator_hysteresis * m.unit_volts);
 }
 
 void check_machine(Level level, const MachineProfile& m) {
@@ -111,6 +112,24 @@ void check_machine(Level level, const MachineProfile& m) {
         "the machine unit of {} V",
         m.supply_volts, HardwareFigures::opamp_headroom, m.unit_volts));
   }
+}
+
+/// A random sign per amplifier, fixed by its name (FNV-1a), so a deck is reproducible.
+int offset_sign(const std::string& name) {
+  std::uint32_t hash = 2166136261u;
+  for (unsigned char c : name) hash = (hash ^ c) * 16777619u;
+  return (hash >> 7) & 1 ? -1 : 1;
+}
+
+/// An amplifier whose offset has the negative sign gets a source in front
+/// of its + input that turns the shared model's +Vos into -Vos.
+void offset_of(const std::string& name, const MachineProfile& m, data& ctx) {
+  const double vos = m.amplifier.offset_volts;
+  const int sign = m.amplifier.random_sign ? offset_sign(name) : 1;
+  ctx.set("sj_ic", num(-sign * vos));
+  ctx.set("plus", sign > 0 ? std::string("0") : std::string("nref"));
+  ctx.set("offset_flip", sign < 0);
+  ctx.set("offset_delta", num(2 * vos));
 }
 
 /// Every number any template of the level may use.
@@ -142,17 +161,19 @@ data context(Level level, const MachineProfile& m) {
   using F = HardwareFigures;
   const double vsat = m.supply_volts - F::opamp_headroom;
   ctx.set("vsat", num(vsat));
-  const double gm = 2 * kPi * F::opamp_gbw * F::opamp_cp;
-  const double imax = F::opamp_slew * F::opamp_cp;
-  ctx.set("oa_a0", num(F::opamp_a0));
-  ctx.set("oa_gbw", num(F::opamp_gbw));
-  ctx.set("oa_sr", num(F::opamp_slew));
-  ctx.set("oa_vos", num(F::opamp_vos));
+  // The machine profile's amplifier (generic: the TL071 figures above).
+  const AmplifierModel& oa = m.amplifier;
+  const double gm = 2 * kPi * oa.bandwidth_hz * F::opamp_cp;
+  const double imax = oa.slew_volts_per_second * F::opamp_cp;
+  ctx.set("oa_a0", num(oa.gain));
+  ctx.set("oa_gbw", num(oa.bandwidth_hz));
+  ctx.set("oa_sr", num(oa.slew_volts_per_second));
+  ctx.set("oa_vos", num(oa.offset_volts));
   ctx.set("oa_ib", num(F::opamp_ib));
   ctx.set("oa_rid", num(F::opamp_rid));
   ctx.set("oa_ro", num(F::opamp_ro));
   ctx.set("oa_cp", num(F::opamp_cp));
-  ctx.set("oa_rp", num(F::opamp_a0 / gm));
+  ctx.set("oa_rp", num(oa.gain / gm));
   ctx.set("oa_imax", num(imax));
   ctx.set("oa_gm_over_imax", num(gm / imax));
   ctx.set("oa_vlin", num(imax / gm));
@@ -173,7 +194,7 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("d_tt", num(F::diode_tt));
   ctx.set("d_bv", num(F::diode_bv));
   ctx.set("d_ibv", num(F::diode_ibv));
-  ctx.set("hsw_ron", num(F::switch_ron));
+  ctx.set("hsw_ron", num(m.switch_resistance));
   ctx.set("hsw_roff", num(F::switch_roff));
   ctx.set("hsw_vt", num(F::switch_vt));
   ctx.set("hsw_vh", num(F::switch_vh));
@@ -181,7 +202,8 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("hsw_rdel", num(F::switch_rdel));
   ctx.set("hsw_cdel", num(F::switch_tau / F::switch_rdel));
   // Integrator: hold the summing junction at the op-amp's balance point.
-  ctx.set("sj_ic", num(-F::opamp_vos));
+  ctx.set("sj_ic", num(-oa.offset_volts));
+  ctx.set("buffered", m.potentiometers_buffered);
   // Limiter: the clamp current while the op-amp sits at its (slightly
   // overdriven) swing limit, and the diode drop at that current.
   const double iclamp = (vsat + imax / F::opamp_gclamp - u) / (F::limiter_rs + F::opamp_ro);
@@ -191,12 +213,12 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("lim_vd", num(vd));
   ctx.set("lim_vclamp", num(u - vd));
   // Comparator: Schmitt trigger with thresholds offset*U +- h.
-  const double h = F::comparator_hyst_mu * u;
+  const double h = m.comparator_hysteresis * u;
   const double r2 = comparator_r2(m);
   ctx.set("cmp_r1", num(F::comparator_r1));
   ctx.set("cmp_r2", num(r2));
   ctx.set("cmp_hyst", num(h));
-  ctx.set("cmp_hyst_mu", num(F::comparator_hyst_mu));
+  ctx.set("cmp_hyst_mu", num(m.comparator_hysteresis));
   ctx.set("cmp_th_scale", num(r2 / (F::comparator_r1 + r2)));
   return ctx;
 }
@@ -327,6 +349,7 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
     list.push_back(item);
   }
   ctx.set("inputs", list);
+  if (level == Level::hardware) offset_of(subckt_name, machine, ctx);
   return render(level, kind, ctx);
 }
 

@@ -25,5 +25,10 @@ int run_netlist(const std::vector<std::string>& args);
 int run_verify(const std::vector<std::string>& args);
 int run_bench(const std::vector<std::string>& args);
 int run_reduce(const std::vector<std::string>& args);
+int run_sweep(const std::vector<std::string>& args);
+int run_merge(const std::vector<std::string>& args);
+int run_figures(const std::vector<std::string>& args);
+int run_patch(const std::vector<std::string>& args);
+int run_random_scenes(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

@@ -9,6 +9,7 @@
 #include "circuit/quality.h"
 #include "common/error.h"
 #include "common/option_error.h"
+#include "machine/machine_file.h"
 
 namespace gearpatch::cli {
 
@@ -89,8 +90,34 @@ void add_quality_option(po::options_description& options, const std::string& not
                         (circuit::quality_help() + note).c_str());
 }
 
+void add_scaling_option(po::options_description& options) {
+  options.add_options()("scaling", po::value<std::string>()->default_value("solved"),
+                        "solved: every scale and β solved as one constraint problem (GLPK), an extra amplifier "
+                        "where no potentiometer reaches; paper: the paper's recipe (section 6's maxima, β from "
+                        "them, refused when a coefficient is beyond every weight), to check Table 1 by hand");
+}
+
+bool paper_scaling(const po::variables_map& vm) {
+  const std::string name = vm["scaling"].as<std::string>();
+  if (name != "solved" && name != "paper") throw Error("--scaling " + name + ": must be solved or paper");
+  return name == "paper";
+}
+
 circuit::TransientControl chosen_quality(const po::variables_map& vm) {
   return circuit::quality_preset(vm["quality"].as<std::string>()).control;
+}
+
+void add_machine_option(po::options_description& options) {
+  std::string names;
+  for (const std::string& name : machine_names()) names += (names.empty() ? "" : ", ") + name;
+  options.add_options()("machine", po::value<std::string>(),
+                        ("the machine the scene is patched on: " + names +
+                         ", or a profile file (copy one from machines/ and edit it); default: the scene's "
+                         "machine.profile, else generic. The scene's machine.* keys override it").c_str());
+}
+
+std::string chosen_machine(const po::variables_map& vm) {
+  return vm.count("machine") ? vm["machine"].as<std::string>() : "";
 }
 
 }  // namespace gearpatch::cli

@@ -10,6 +10,7 @@
 #include "common/output_set.h"
 #include "common/process.h"
 #include "scene/scene.h"
+#include "scaling/patch.h"
 #include "spice/deck_reader.h"
 #include "verify/report.h"
 #include "verify/verify.h"
@@ -30,8 +31,13 @@ void hold_to_deck(const po::variables_map& vm, const spice::DeckHeader& h, const
   if (!vm["level"].defaulted() && vm["level"].as<std::string>() != h.level)
     refuse("--level " + vm["level"].as<std::string>(), "level", h.level);
   o.level = circuit::parse_level(h.level);
-  if (o.autoscale && h.scaling != "autoscale") refuse("--autoscale", "scaling", h.scaling);
-  o.autoscale = h.scaling == "autoscale";
+  const auto [method, autoscaled] = parse_scaling_name(h.scaling);
+  if (o.autoscale && !autoscaled) refuse("--autoscale", "scaling", h.scaling);
+  const bool paper = method == ScalingMethod::paper;
+  if (!vm["scaling"].defaulted() && (vm["scaling"].as<std::string>() == "paper") != paper)
+    refuse("--scaling " + vm["scaling"].as<std::string>(), "scaling", h.scaling);
+  o.autoscale = autoscaled;
+  o.paper_scaling = paper;
   if (h.quality == "custom") return;  // edited .tran settings: the options' grid it is
   if (!vm["quality"].defaulted() && vm["quality"].as<std::string>() != h.quality)
     refuse("--quality " + vm["quality"].as<std::string>(), "quality", h.quality);
@@ -61,8 +67,8 @@ int run_verify(const std::vector<std::string>& args) {
                    "number is refused), at most 100% (default {:g}% ideal, {:g}% hardware)",
                    100 * verify::default_tolerance(circuit::Level::ideal),
                    100 * verify::default_tolerance(circuit::Level::hardware)).c_str())
-      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
-       "(as settings --autoscale) instead of the paper's a-priori maxima; with --deck, the deck's own scaling")
+      ("autoscale", "scale from the reference model's simulated peaks instead of the a-priori bounds "
+       "(as settings --autoscale); with --deck, the deck's own scaling")
       ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one. "
        "A deck written by gearpatch netlist says its level, scaling and quality in its header, and verify "
        "holds to it; a deck without that header is read back with the options' level and scaling. "
@@ -76,6 +82,8 @@ int run_verify(const std::vector<std::string>& args) {
        "run and kept whatever its outcome, to rerun it by hand)");
   add_output_options(options, "the report", "the report");
   add_quality_option(options, "; with --deck, the deck's own");
+  add_machine_option(options);
+  add_scaling_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
@@ -92,6 +100,7 @@ int run_verify(const std::vector<std::string>& args) {
   o.level = circuit::parse_level(vm["level"].as<std::string>());
   if (vm.count("tolerance")) o.tolerance = percent_option(vm, "tolerance", 100);
   o.autoscale = vm.count("autoscale") > 0;
+  o.paper_scaling = paper_scaling(vm);
   o.transient = chosen_quality(vm);
   if (vm.count("deck")) {
     const std::string path = vm["deck"].as<std::string>();
@@ -111,7 +120,7 @@ int run_verify(const std::vector<std::string>& args) {
     outputs.add("--keep-deck", vm["keep-deck"].as<std::string>());
     o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
   }
-  const Scene scene = load_scene(file);
+  const Scene scene = load_scene(file, chosen_machine(vm));
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   auto simulator = spice::make_batch_ngspice();

@@ -20,6 +20,7 @@ constexpr std::pair<Setting, const char*> setting_table[] = {
     {Setting::alpha_stribeck_p, "alpha_stribeck_p"}, {Setting::alpha_stribeck_s, "alpha_stribeck_s"},
     {Setting::a, "a"},
     {Setting::delta1, "delta1"},   {Setting::delta2, "delta2"},
+    {Setting::alpha_stage, "alpha_stage"},
 };
 
 }  // namespace

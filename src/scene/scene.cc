@@ -14,6 +14,7 @@
 #include "common/numbers.h"
 #include "common/utf8.h"
 #include "common/option_error.h"
+#include "machine/machine_file.h"
 #include "model/stage_reduction.h"
 #include "scene/drive_table.h"
 #include "scene/units.h"
@@ -50,6 +51,8 @@ const std::map<std::string, std::string>& scene_keys() {
       {"maxima.contact_twist", "override Δφ'm, rad, > 0"},
       {"maxima.twist", "override Δφm, rad, > 0"},
       {"maxima.torque", "override M0m, N·m, > 0"},
+      {"machine.profile", "the machine: a shipped profile (the-analog-thing, model-1, classic, generic) or a "
+                          "profile file, relative to the scene (default generic); the machine.* keys below override it"},
       {"machine.unit", "volts per machine unit, 0.1 … 1e3 (default 10)"},
       {"machine.time_scale", "β (machine time = β·real time), 1e-6 … 1e6, or auto (default)"},
       {"machine.integrator_constant", "k0, 1/s at weight 1, 1e-3 … 1e6 (default 1)"},
@@ -331,10 +334,24 @@ double machine_value(const Reader& r, const std::string& key, double fallback) {
   throw Error("no range for " + key, Error::Kind::internal);
 }
 
-void read_machine(const Reader& r, Scene& s) {
+/// The profile the machine.* keys start from: `chosen` (--machine) over the
+/// scene's machine.profile over generic; a bad one is an error at that key.
+MachineProfile machine_profile(const Reader& r, const Scene& s, const std::string& chosen) {
+  if (!chosen.empty()) return load_machine_profile(chosen);
+  if (!r.has("machine.profile")) return load_machine_profile("generic");
+  try {
+    return load_machine_profile(r.raw("machine.profile"), s.source);
+  } catch (const Error& e) {
+    r.fail("machine.profile", e.what());
+  }
+}
+
+void read_machine(const Reader& r, Scene& s, const std::string& chosen) {
+  s.machine = machine_profile(r, s, chosen);
   MachineProfile& m = s.machine;
   m.unit_volts = machine_value(r, "machine.unit", m.unit_volts);
   m.integrator_constant = machine_value(r, "machine.integrator_constant", m.integrator_constant);
+  if (r.has("machine.integrator_constant")) m.integrator_constants.clear();  // the scene's k0 is the one
   m.input_resistance = machine_value(r, "machine.input_resistance", m.input_resistance);
   m.potentiometer_resistance = machine_value(r, "machine.potentiometer_resistance", m.potentiometer_resistance);
   m.supply_volts = machine_value(r, "machine.supply", m.supply_volts);
@@ -494,6 +511,10 @@ void read_drive_engineer(const Reader& r, Scene& s) {
 }  // namespace
 
 Scene parse_scene(const std::string& file_text, const std::string& source) {
+  return parse_scene(file_text, source, "");
+}
+
+Scene parse_scene(const std::string& file_text, const std::string& source, const std::string& machine) {
   // A byte-order mark, as some Windows editors write, is not part of the first line.
   constexpr std::string_view bom = "\xEF\xBB\xBF";
   const std::string text = file_text.starts_with(bom) ? file_text.substr(bom.size()) : file_text;
@@ -516,10 +537,14 @@ Scene parse_scene(const std::string& file_text, const std::string& source) {
   if (r.has("run.output_step")) s.output_step = r.positive("run.output_step");
   for (const auto& [key, help] : scene_keys())
     if (key.rfind("maxima.", 0) == 0 && r.has(key)) s.maxima[key.substr(7)] = r.positive(key);
-  read_machine(r, s);
+  read_machine(r, s, machine);
   return s;
 }
 
 Scene load_scene(const std::string& path) { return parse_scene(read_file(path), path); }
+
+Scene load_scene(const std::string& path, const std::string& machine) {
+  return parse_scene(read_file(path), path, machine);
+}
 
 }  // namespace gearpatch

@@ -92,8 +92,15 @@ struct Scene {
 /// Error (kind input) naming file, line and key for any bad input.
 Scene parse_scene(const std::string& text, const std::string& source);
 
+/// The same on the machine `machine` (a shipped profile's name or a profile
+/// file, as --machine gives it) instead of the scene's machine.profile; the
+/// scene's other machine.* keys still override the profile. Empty: the scene's.
+Scene parse_scene(const std::string& text, const std::string& source, const std::string& machine);
+
 /// Reads and parses a scene file.
 Scene load_scene(const std::string& path);
+/// The same on `machine` (see parse_scene).
+Scene load_scene(const std::string& path, const std::string& machine);
 
 /// The keys a scene file may hold, "section.key" → one-line description, for
 /// --help and for rejecting unknown keys.

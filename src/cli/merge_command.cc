@@ -1,0 +1,34 @@
+#include "cli/command.h"
+#include "cli/options.h"
+#include "runs/job_list.h"
+#include "sweep/sweep_outputs.h"
+
+namespace gearpatch::cli {
+
+int run_merge(const std::vector<std::string>& args) {
+  po::options_description options("merge options");
+  options.add_options()
+      ("csv", po::value<std::string>(), "write the table as CSV to FILE")
+      ("plot", po::value<std::string>(), "overlay of the study's signals of every point (.png or .svg)")
+      ("figures-plot", po::value<std::string>(), "each figure against the first swept key (.png or .svg)");
+  add_output_options(options, "the table", "the table");
+  po::variables_map vm;
+  if (!parse_arguments(args, "usage: gearpatch merge RUNDIR [options]\n\n"
+                       "Reads the results of a run folder written by `sweep --job-list` (however its\n"
+                       "jobs were run: GNU Parallel, a Slurm array, by hand) and writes the same\n"
+                       "table, CSV, JSON and plots as the sweep itself. A job without a result is\n"
+                       "counted and named. Exit status as sweep's.",
+                       options,
+                       {"gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:4 --job-list runs/c",
+                        "parallel -S : < runs/c/jobs.txt   # ':' is this machine; --sshloginfile FILE for hosts",
+                        "gearpatch merge runs/c --csv c.csv --plot c.png"},
+                       vm))
+    return 0;
+  const runs::RunFolder folder(single_file(vm, "merge", "RUNDIR"));
+  const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };
+  sweep::SweepOutputs outputs({main_output(vm, {"json", "csv"}), get("json"), get("csv"), get("plot"),
+                               get("figures-plot")});
+  return sweep::merge_and_write(folder, outputs);
+}
+
+}  // namespace gearpatch::cli

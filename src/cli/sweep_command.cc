@@ -1,0 +1,116 @@
+#include <cstdio>
+#include <filesystem>
+#include <fmt/format.h>
+#include <optional>
+
+#include "cli/command.h"
+#include "cli/options.h"
+#include "circuit/block_library.h"
+#include "common/error.h"
+#include "common/scratch_dir.h"
+#include "runs/pool.h"
+#include "sweep/sweep_outputs.h"
+#include "sweep/sweep_study.h"
+
+namespace gearpatch::cli {
+namespace {
+
+sweep::SweepStudy study_from_options(const po::variables_map& vm) {
+  sweep::SweepStudy study;
+  study.scene_path = std::filesystem::absolute(single_file(vm, "sweep")).lexically_normal().string();
+  if (!vm.count("set")) throw Error("sweep: give at least one --set KEY=VALUES (see --help)");
+  for (const std::string& option : vm["set"].as<std::vector<std::string>>()) {
+    sweep::Axis axis = sweep::parse_axis(option);
+    for (const sweep::Axis& other : study.axes)
+      if (other.key == axis.key) throw Error(fmt::format("--set {}: {} is swept twice", option, axis.key));
+    study.axes.push_back(std::move(axis));
+  }
+  study.options.signals = sweep::parse_signals(vm["signals"].as<std::string>());
+  study.options.verify = vm.count("verify") > 0;
+  study.options.level = circuit::parse_level(vm["level"].as<std::string>());
+  study.machine = chosen_machine(vm);
+  // a profile file is named absolutely, so that jobs run from any folder find it
+  if (!study.machine.empty() && std::filesystem::is_regular_file(study.machine))
+    study.machine = std::filesystem::absolute(study.machine).lexically_normal().string();
+  return study;
+}
+
+sweep::SweepOutputPaths output_paths(const po::variables_map& vm) {
+  const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };
+  return {main_output(vm, {"json", "csv"}), get("json"), get("csv"), get("plot"), get("figures-plot")};
+}
+
+}  // namespace
+
+int run_sweep(const std::vector<std::string>& args) {
+  po::options_description options("sweep options");
+  const std::string jobs_help = fmt::format("points run at once (default: the cores, here {})", runs::core_count());
+  options.add_options()
+      ("set", po::value<std::vector<std::string>>()->composing(),
+       "KEY=VALUES: a scene key (as in the scene file: gear.restitution) and its values, comma-separated; "
+       "an item start:stop:count is a linear range, log:start:stop:count a logarithmic one (ends included). "
+       "Repeat --set for a cartesian product")
+      ("verify", "also run the circuit with ngspice at every point and compare (as verify)")
+      ("level", po::value<std::string>()->default_value("ideal"), "with --verify: ideal or hardware")
+      ("signals", po::value<std::string>()->default_value("omega_p,omega_s"),
+       "the signals of the --plot overlay: omega_p, omega_s, dphi, m0, comma-separated")
+      ("jobs,j", po::value<unsigned>(), jobs_help.c_str())
+      ("csv", po::value<std::string>(), "write the table as CSV to FILE")
+      ("plot", po::value<std::string>(), "overlay of the --signals of every point over time (.png or .svg)")
+      ("figures-plot", po::value<std::string>(), "each figure against the first swept key (.png or .svg)")
+      ("run-dir", po::value<std::string>(), "keep the run folder (jobs, results, logs) in DIR, a new folder")
+      ("job-list", po::value<std::string>(), "only write the run folder DIR: jobs.txt for GNU Parallel, "
+       "slurm.sh for a Slurm array; run them, then `gearpatch merge DIR`")
+      ("point", po::value<std::size_t>(), "run only point I (0-based) and write its result JSON to --result "
+       "(what each job of the run folder does)")
+      ("result", po::value<std::string>(), "with --point: the result file");
+  add_output_options(options, "the table", "the table");
+  add_machine_option(options);
+  po::variables_map vm;
+  if (!parse_arguments(args, "usage: gearpatch sweep SCENE --set KEY=VALUES [--set KEY2=VALUES] [options]\n\n"
+                       "Runs the reference model (and with --verify the circuit) at every point of\n"
+                       "the swept values and tabulates per point: impacts, the restitution achieved,\n"
+                       "peak tooth torque and twist, settling time to the common speed, mean speed,\n"
+                       "energy and momentum lost, and the verify verdict. Points run in parallel\n"
+                       "(--jobs); --job-list writes them for GNU Parallel or Slurm instead. Exit\n"
+                       "status 0: done, 1: a verified point failed, 2: bad input (nothing run),\n"
+                       "3: a point could not be run (named in the table).",
+                       options,
+                       {"gearpatch sweep scenes/bild5b.ini --set gear.restitution=0:1:5 --plot k.png --csv k.csv",
+                        "gearpatch sweep scenes/bild6a.ini --set friction.bearing_secondary=log:1e-3:1:7 "
+                        "--set gear.restitution=0.5,1 --figures-plot friction.svg",
+                        "gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:4 --job-list runs/c",
+                        "parallel --sshloginfile HOSTS < runs/c/jobs.txt   # then: gearpatch merge runs/c"},
+                       vm))
+    return 0;
+  const sweep::SweepStudy study = study_from_options(vm);
+  if (vm.count("point")) {
+    if (!vm.count("result")) throw Error("--point needs --result FILE");
+    sweep::run_sweep_point(study, vm["point"].as<std::size_t>(), vm["result"].as<std::string>());
+    return 0;
+  }
+  if (vm.count("result")) throw Error("--result is for --point");
+  sweep::check_points(study, single_file(vm, "sweep"));  // every bad key or value refused before anything runs
+  const std::vector<runs::Job> jobs = sweep::sweep_jobs(study);
+  if (vm.count("job-list")) {
+    const runs::RunFolder folder(vm["job-list"].as<std::string>());
+    folder.write(sweep::to_json(study), jobs);
+    fmt::print(stderr, "gearpatch sweep: {} jobs in {}\n  run them:  parallel --sshloginfile HOSTS < {}/jobs.txt\n"
+               "         or sbatch --array=1-{} {}/slurm.sh\n  then:      gearpatch merge {}\n",
+               jobs.size(), folder.dir().string(), folder.dir().string(), jobs.size(), folder.dir().string(),
+               folder.dir().string());
+    return 0;
+  }
+  sweep::SweepOutputs outputs(output_paths(vm));
+  const unsigned workers = vm.count("jobs") ? vm["jobs"].as<unsigned>() : runs::core_count();
+  if (workers < 1) throw Error("--jobs 0: run at least one point at a time");
+  std::optional<ScratchDir> scratch;
+  if (!vm.count("run-dir")) scratch.emplace("gearpatch-sweep");
+  const runs::RunFolder folder(scratch ? scratch->path() / "run" : std::filesystem::path(vm["run-dir"].as<std::string>()));
+  folder.write(sweep::to_json(study), jobs);
+  fmt::print(stderr, "gearpatch sweep: {} points on {} workers\n", jobs.size(), workers);
+  runs::run_jobs(folder, jobs, workers, "gearpatch sweep");
+  return sweep::merge_and_write(folder, outputs);
+}
+
+}  // namespace gearpatch::cli

@@ -1,0 +1,57 @@
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "circuit/netlist.h"
+#include "model/gear_model.h"
+#include "solver/signal.h"
+#include "solver/trajectory.h"
+
+namespace gearpatch {
+struct Scene;
+}
+
+namespace gearpatch::sweep {
+
+/// The figures of one run that a study compares across points, all from the
+/// exact reference: the contacts' closed-form records (solver/trajectory.h)
+/// and the exact final state, never an output grid.
+struct PointFigures {
+  int impacts = 0;                  ///< contacts that began with an impact
+  /// Achieved, per impact: ContactRecord::restitution of a released contact;
+  /// for one held to the run's end (k = 0) −Δφ̇ there / Δφ̇ at the impact, once below 1e-9 of it.
+  std::vector<double> restitution;
+  double peak_torque = 0;           ///< N·m, largest |M0| of any contact
+  double peak_twist = 0;            ///< rad, largest |Δφ| of any contact
+  /// s: from then on |φ̇p − φ̇s| stays within 1 % of its largest value (on
+  /// the run's output rows, events included); NaN if it is outside at the end.
+  double settling_time = 0;
+  double momentum_mean = 0;         ///< rad/s, (Θp·φ̇p + Θs·φ̇s)/(Θp+Θs) at the end
+  double energy_lost = 0;           ///< J, kinetic + elastic at the start minus at the end (no drive)
+  double momentum_lost = 0;         ///< N·m·s, Θp·φ̇p + Θs·φ̇s at the start minus at the end
+  double momentum_lost_fraction = 0;  ///< of the initial momentum (NaN if that is 0)
+};
+
+/// The figures of a reference run of `model` from `initial`.
+PointFigures point_figures(const GearModel& model, const GearState& initial, const Trajectory& trajectory);
+
+/// What a point runs besides the reference.
+struct PointOptions {
+  std::vector<Signal> signals = {Signal::omega_p, Signal::omega_s};  ///< traces kept for the overlay plot
+  bool verify = false;
+  circuit::Level level = circuit::Level::ideal;
+};
+
+/// Runs one point: the reference always, the circuit with ngspice when
+/// asked; returns its result JSON: "figures", "trace" (t and the chosen
+/// signals on the run's output), and "verify" (passed, worst error, failures).
+nlohmann::json run_point(const Scene& scene, const PointOptions& options);
+
+/// Figures as JSON and back (NaN as null).
+nlohmann::json to_json(const PointFigures& f);
+PointFigures figures_from_json(const nlohmann::json& j);
+
+}  // namespace gearpatch::sweep

@@ -1,0 +1,55 @@
+#include "sweep/sweep_outputs.h"
+
+#include <cstdio>
+#include <fmt/format.h>
+
+#include "common/error.h"
+#include "common/gnuplot.h"
+
+namespace gearpatch::sweep {
+
+SweepOutputs::SweepOutputs(const SweepOutputPaths& paths) : paths_(paths) {
+  if (!paths.table.empty()) set_.add("--out", paths.table);
+  if (!paths.json.empty()) set_.add("--json", paths.json);
+  if (!paths.csv.empty()) set_.add("--csv", paths.csv);
+  if (!paths.plot.empty()) {
+    set_.add("--plot", paths.plot);
+    plot_format_ = plot_format(paths.plot, "--plot");
+  }
+  if (!paths.figures_plot.empty()) {
+    set_.add("--figures-plot", paths.figures_plot);
+    figures_format_ = plot_format(paths.figures_plot, "--figures-plot");
+  }
+}
+
+void SweepOutputs::write(const SweepTable& table) {
+  const std::string text = to_text(table);
+  std::vector<std::string> warnings;
+  if (set_.has("--out")) set_.stage("--out", text);
+  if (set_.has("--json")) set_.stage("--json", to_json(table));
+  if (set_.has("--csv")) set_.stage("--csv", to_csv(table));
+  const auto draw = [&](const std::string& option, const std::string& format, auto&& plot) {
+    if (!set_.has(option)) return;
+    try {
+      set_.stage(option, plot(table, format));
+    } catch (const Error& e) {
+      warnings.push_back(fmt::format("{} {}: not written: {}", option, set_.path(option), e.what()));
+    }
+  };
+  draw("--plot", plot_format_, overlay_plot);
+  draw("--figures-plot", figures_format_, figures_plot);
+  set_.commit();
+  if (!set_.has("--out")) std::fputs(text.c_str(), stderr);
+  for (const std::string& w : warnings) std::fprintf(stderr, "gearpatch sweep: warning: %s\n", w.c_str());
+}
+
+int merge_and_write(const runs::RunFolder& folder, SweepOutputs& outputs) {
+  const SweepTable table{study_from_json(folder.manifest().at("study")), runs::collect_results(folder)};
+  outputs.write(table);
+  if (table.failed() > 0) return 3;
+  for (const runs::JobOutcome& o : table.points)
+    if (o.result->contains("verify") && !o.result->at("verify").at("passed").get<bool>()) return 1;
+  return 0;
+}
+
+}  // namespace gearpatch::sweep
