@@ -25,24 +25,34 @@ Scene drive_scene(const std::string& name) {
 
 TEST_CASE("every drive scene passes verify at the ideal level", "[drive][ngspice]") {
   auto ngspice = spice::make_batch_ngspice();
-  for (const std::string name : drive_scenes) {
-    INFO(name);
-    const verify::VerifyResult r = verify::verify(drive_scene(name), {}, *ngspice);
-    INFO(verify::to_table(r));
-    CHECK(r.passed);
-    for (const auto& e : r.comparison.signals) CHECK(e.max_error <= 0.005);
-    CHECK(r.overloads.empty());
-  }
+  // The solved scaling (the default) must realise the new coefficients as well as the paper's recipe does.
+  for (const bool paper : {false, true})
+    for (const std::string name : drive_scenes) {
+      INFO(name << (paper ? " (--scaling paper)" : " (solved scaling)"));
+      verify::VerifyOptions options;
+      options.paper_scaling = paper;
+      const verify::VerifyResult r = verify::verify(drive_scene(name), options, *ngspice);
+      INFO(verify::to_table(r));
+      CHECK(r.passed);
+      for (const auto& e : r.comparison.signals) CHECK(e.max_error <= 0.005);
+      CHECK(r.overloads.empty());
+    }
 }
 
 TEST_CASE("each drive feature gets its circuit only when the scene has it", "[drive]") {
-  const auto deck = [](const std::string& name) {
-    const Patch patch = make_patch(drive_scene(name));
+  const auto deck = [](const std::string& name, ScalingMethod method = ScalingMethod::solved) {
+    PatchOptions o;
+    o.method = method;
+    const Patch patch = make_patch(drive_scene(name), o);
     return circuit::render_netlist(circuit::build_circuit(patch, circuit::Level::ideal));
   };
   const std::string reversal = deck("reversal"), startup = deck("startup"), conveyor = deck("conveyor");
-  CHECK(reversal.find("Vdrive_n drive_n 0 PWL(0 0 0.2 -") != std::string::npos);
-  CHECK(conveyor.find("Vdrive_n drive_n 0 DC -10") != std::string::npos);
+  CHECK(reversal.find("Vdrive_n drive_n 0 PWL(0 0 ") != std::string::npos);
+  CHECK(conveyor.find("Vdrive_n drive_n 0 DC -") != std::string::npos);
+  // The paper's recipe puts the drive's maximum at the drive (1 MU = 10 V) and β = 1: the table's own corners.
+  CHECK(deck("reversal", ScalingMethod::paper).find("Vdrive_n drive_n 0 PWL(0 0 0.2 -10 1.5 -10 1.6 10 ") !=
+        std::string::npos);
+  CHECK(deck("conveyor", ScalingMethod::paper).find("Vdrive_n drive_n 0 DC -10\n") != std::string::npos);
   CHECK(startup.find("alpha_speed_p") != std::string::npos);
   CHECK(startup.find("alpha_viscous_s") != std::string::npos);
   CHECK(conveyor.find("alpha_speed_p") == std::string::npos);
