@@ -48,6 +48,14 @@ int total(const Allocation& a) {
 
 const std::vector<std::string> machines = {"the-analog-thing", "model-1", "classic", "generic"};
 
+/// The example scenes and issue 14's drive scenes (PWL drive, speed feedback, capped law, Stribeck limiters).
+std::vector<std::string> example_and_drive_scenes() {
+  std::vector<std::string> scenes = testing::example_scenes();
+  for (const char* drive : {"conveyor", "startup", "reversal", "capped", "stribeck"})
+    scenes.push_back(std::string("drive/") + drive);
+  return scenes;
+}
+
 /// One amplifier input as both sides describe it: from node, amplifier,
 /// input, weight, potentiometer setting (name and value; "" and 1 for none)
 /// and the node that switches it.
@@ -167,7 +175,7 @@ TEST_CASE("a potentiometer patched twice appears twice; a setting of 1 is a wire
 
 TEST_CASE("every connection of the patch is a connection of the deck and back, with the same weights, signs and "
           "settings", "[patching]") {
-  for (const auto& scene : testing::example_scenes())
+  for (const auto& scene : example_and_drive_scenes())
     for (const auto& machine : machines) {
       INFO(scene << " on " << machine);
       const Patch p = patch_of(scene, machine, circuit::Level::ideal);
@@ -214,7 +222,7 @@ TEST_CASE("the committed patch sheets in patches/ are what the allocation writes
 
 TEST_CASE("the picture renders through Graphviz for every example scene and machine and names every element",
           "[patching]") {
-  for (const auto& scene : testing::example_scenes())
+  for (const auto& scene : example_and_drive_scenes())
     for (const auto& machine : machines) {
       INFO(scene << " on " << machine);
       const MachinePatch p = on(scene, machine);
@@ -274,4 +282,21 @@ TEST_CASE("the hardware deck on THE ANALOG THING is built from its profile, and 
   const double start = p.find(Setting::alpha6)->coefficient;
   CHECK(start < 1);
   CHECK(std::abs(v.at("v(wp)").front() / 10 - start) < 0.01);
+}
+
+TEST_CASE("every drive scene is allocated on model-1; what the rack lacks is named, not a crash", "[patching]") {
+  for (const char* fits : {"conveyor", "startup", "capped"}) {
+    INFO(fits);
+    const MachinePatch m = on(std::string("drive/") + fits, "model-1");
+    CHECK(m.allocation.shortfalls.empty());
+    CHECK(m.allocation.input_overflows.empty());
+  }
+  // The drive table is a function generator of time; model-1's rack has none.
+  const Allocation reversal = on("drive/reversal", "model-1").allocation;
+  CHECK(needed(reversal, ElementKind::function_generator) == 1);
+  CHECK_THAT(fit_summary(reversal), Catch::Contains("function_generator: needs 1, the machine has 0"));
+  // Sixteen limiters per Stribeck generator, all into the integrators: more than one rack.
+  const Allocation stribeck = on("drive/stribeck", "model-1").allocation;
+  CHECK_THAT(fit_summary(stribeck), Catch::Contains("does NOT fit one model-1"));
+  CHECK_THAT(fit_summary(stribeck), Catch::Contains("INT1 (int_p) needs 17 inputs of weight 1"));
 }

@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 #include <set>
 
+#include "circuit/stribeck_generator.h"
 #include "common/error.h"
+#include "scaling/table1.h"
 #include "scaling/patch.h"
 
 namespace gearpatch::circuit {
@@ -127,9 +129,15 @@ class Builder {
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
     std::vector<AmplifierInput> in;
     if (has(Setting::alpha2)) {
-      c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
+      if (patch_.drive_profile.empty())
+        c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
+      else
+        c_.pwl_sources.emplace_back("drive_n", drive_waveform());
       in.push_back(through("drive_n", Setting::alpha2));
     }
+    if (has(Setting::alpha_speed_p)) in.push_back(through("wp", Setting::alpha_speed_p));
+    if (has(Setting::alpha_stribeck_p))
+      stribeck_generator("p", "wp", patch_.maxima.speed_primary, Setting::alpha_stribeck_p, in);
     if (has(Setting::alpha1)) in.push_back(through("sign_p", Setting::alpha1));
     in.push_back(through("m", Setting::alpha3));
     amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
@@ -139,6 +147,9 @@ class Builder {
   void add_secondary() {  // (6.2): φ̇s' = (M0 − M_Rz − M_Rs − M_Re − M_L)/Θs
     std::vector<AmplifierInput> in{through("m_n", Setting::alpha4)};
     if (has(Setting::alpha5)) in.push_back(through("sign_s", Setting::alpha5));
+    if (has(Setting::alpha_viscous_s)) in.push_back(through("ws", Setting::alpha_viscous_s));
+    if (has(Setting::alpha_stribeck_s))
+      stribeck_generator("s", "ws", patch_.maxima.speed_secondary, Setting::alpha_stribeck_s, in);
     if (has(Setting::alpha_tooth)) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
       in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
       in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
@@ -163,6 +174,37 @@ class Builder {
     amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
     c_.initial_conditions.emplace_back("ws", initial(Setting::alpha7));
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
+  }
+
+  /// The Stribeck dip as a diode function generator: n limiters on the speed
+  /// with the breakpoints of stribeck_breakpoints, each through the same
+  /// potentiometer, give back (k_S − k_C)·(1 − e^{−|φ̇|/φ̇_S})·sign φ̇ of the
+  /// break-away level block 2/14 takes off.
+  void stribeck_generator(const std::string& shaft, const std::string& speed, double full_scale,
+                          Setting pot, std::vector<AmplifierInput>& in) {
+    const std::vector<double> breaks = stribeck_breakpoints(stribeck_steps);
+    for (std::size_t i = 0; i < breaks.size(); ++i) {
+      const std::string out = fmt::format("strib_{}{}", shaft, i + 1);
+      const double band = breaks[i] * patch_.stribeck_speed / full_scale;
+      block(out, BlockKind::limiter, {speed, out}, format_band(band),
+            fmt::format("Stribeck generator, breakpoint {:.4g} rad/s: {} = -clip({}/band)",
+                        breaks[i] * patch_.stribeck_speed, out, speed));
+      in.push_back(through(out, pot));
+    }
+  }
+
+  /// The drive profile in machine time and units, inverted like the DC
+  /// drive source; a step (two points at one time) rises in a billionth of
+  /// the run, since a PWL source needs increasing times.
+  std::vector<std::pair<double, double>> drive_waveform() const {
+    std::vector<std::pair<double, double>> w;
+    const double rise = 1e-9 * patch_.beta * patch_.duration;
+    for (const auto& [t, torque] : patch_.drive_profile.points()) {
+      double time = patch_.beta * t;
+      if (!w.empty() && time <= w.back().first) time = w.back().first + rise;
+      w.emplace_back(time, 0.0 - torque / patch_.maxima.drive_torque);  // no "-0" in the deck
+    }
+    return w;
   }
 
   void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)
@@ -195,8 +237,43 @@ class Builder {
     } else {
       omit("damping path alpha14 and blocks 7/9: d = 0 (k = 1)");
     }
-    amplifier("sum_m0", false, "m_n", in, "(6.8) transmitted torque: m_n = -M0/M0m");
+    const bool capped = patch_.capped_contact && patch_.dead_zone && has(Setting::alpha14);
+    amplifier("sum_m0", false, capped ? "kv_n" : "m_n", in,
+              capped ? "(6.8) spring and damper: kv_n = -(s + q), s = c*dphi', q = d*dphi'' in contact"
+                     : "(6.8) transmitted torque: m_n = -M0/M0m");
+    if (capped) add_capped_law();
     inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
+  }
+
+  /// The capped law (Modelica's ElastoBacklash) from half-wave diodes:
+  /// M0 = relu(s + q − relu(q − s)) − relu(−(s + q) − relu(s − q)), which is
+  /// s + min(s, q) on the positive side, s + max(s, q) on the negative, and 0
+  /// where that would pull. Each relu is a halfwave block (pos = −max(in, 0),
+  /// neg = −min(in, 0)).
+  void add_capped_law() {
+    inverter("inv_kv", "kv_n", "kv", "kv = s + q");
+    amplifier("sum_cap_d", false, "cap_d_n",
+              {through("xp", Setting::alpha13), through("dw_n", Setting::alpha14, "damp_p"),
+               through("dw_n", Setting::alpha14, "damp_n")},
+              "capped law: cap_d_n = q - s");
+    block("cap_half_d", BlockKind::halfwave, {"cap_d_n", "cap_r1_n", "cap_r2"}, "",
+          "capped law: cap_r1_n = -relu(q - s), cap_r2 = relu(s - q)");
+    // Each side's half is switched on only while its flanks touch (the damping
+    // comparators): on the other side it would reach 2|s| and overload.
+    amplifier("sum_cap_g", false, "cap_g_n",
+              {{"kv", std::nullopt, 1, "damp_p"}, {"cap_r1_n", std::nullopt, 1, "damp_p"}},
+              "capped law: cap_g_n = -(s + q - relu(q - s)) while X' > delta1");
+    block("cap_half_g", BlockKind::halfwave, {"cap_g_n", "cap_g_low", "cap_push_p"}, "",
+          "capped law: cap_push_p = relu(s + q - relu(q - s)), the positive side's torque");
+    inverter("inv_kv2", "kv_n", "kv2", "kv2 = s + q, for the negative side");
+    amplifier("sum_cap_h", false, "cap_h",
+              {{"kv2", std::nullopt, 1, "damp_n"}, {"cap_r2", std::nullopt, 1, "damp_n"}},
+              "capped law: cap_h = -(s + q) - relu(s - q) while X' < -delta1");
+    block("cap_half_h", BlockKind::halfwave, {"cap_h", "cap_push_n", "cap_h_low"}, "",
+          "capped law: cap_push_n = -relu(cap_h), the negative side's torque");
+    amplifier("sum_cap_m", false, "m_n",
+              {{"cap_push_p", std::nullopt, 1, ""}, {"cap_push_n", std::nullopt, 1, ""}},
+              "capped law: m_n = -M0/M0m");
   }
 
   /// Two comparators that tell which flanks touch: <name>_p while X' > δ,

@@ -66,6 +66,8 @@ struct Circuit {
   std::vector<Amplifier> amplifiers;
   std::vector<FunctionBlock> blocks;
   std::vector<std::pair<std::string, double>> sources;  ///< node → machine units (DC)
+  /// node → (machine time s, machine units): a time-varying drive as a PWL source.
+  std::vector<std::pair<std::string, std::vector<std::pair<double, double>>>> pwl_sources;
   std::vector<std::pair<Setting, double>> parameters;  ///< one .param each → value (ideal)
   std::map<Setting, double> dial_settings;  ///< potentiometer → dial position (hardware)
   std::map<Setting, int> weights;           ///< potentiometer → input weight

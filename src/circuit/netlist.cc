@@ -104,6 +104,15 @@ std::string program(const Circuit& c, const MachineProfile& m) {
   for (const auto& [node, mu] : c.sources)
     if (seen.insert(node).second)
       text += fmt::format("V{} {} 0 DC {}\n", node, node, format_number(mu * m.unit_volts));
+  for (const auto& [node, points] : c.pwl_sources) {  // a drive that varies in time
+    text += fmt::format("V{} {} 0 PWL(", node, node);
+    const char* gap = "";
+    for (const auto& [t, mu] : points) {
+      text += fmt::format("{}{} {}", gap, format_number(t), format_number(mu * m.unit_volts));
+      gap = " ";
+    }
+    text += ")\n";
+  }
   text += "\n* The program\n";
   for (const auto& a : c.amplifiers) text += amplifier_instances(a);
   for (const auto& b : c.blocks) {

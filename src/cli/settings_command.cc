@@ -7,6 +7,7 @@
 #include "patching/machine_patch.h"
 #include "patching/patch_sheet.h"
 #include "scaling/patch.h"
+#include "scene/drive_report.h"
 #include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
@@ -58,7 +59,7 @@ int run_settings(const std::vector<std::string>& args) {
   if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
   const Scene scene = load_scene(file, chosen_machine(vm));
   const Patch patch = make_patch(scene, o);
-  std::string table = to_table(patch);
+  std::string table = drive_report(scene) + to_table(patch);
   // Only for a chosen machine, so that a scene without one keeps its table.
   if (!chosen_machine(vm).empty() || scene.lines.count("machine.profile"))
     table += "\nmachine: " + patching::fit_summary(patching::patch_on_machine(patch).allocation) +

@@ -20,6 +20,11 @@ std::string to_string(GuardKind k) {
     case GuardKind::secondary_breaks_forward: return "secondary-breaks+";
     case GuardKind::secondary_breaks_backward: return "secondary-breaks-";
     case GuardKind::torque_reverses: return "torque-reverses";
+    case GuardKind::drive_breakpoint: return "drive-breakpoint";
+    case GuardKind::damping_capped: return "damping-capped";
+    case GuardKind::damping_uncapped: return "damping-uncapped";
+    case GuardKind::flanks_part: return "flanks-part";
+    case GuardKind::flanks_press: return "flanks-press";
   }
   return "?";
 }
@@ -30,35 +35,74 @@ namespace {
 bool in_contact(Contact c) { return c != Contact::free; }
 }  // namespace
 
-ModeDynamics GearModel::dynamics(const Mode& m) const {
+ModeDynamics GearModel::dynamics(const Mode& m, double t) const {
   ModeDynamics d;
   d.inv_p = m.primary == Shaft::held ? 0.0 : 1.0 / p_.inertia_primary;
   d.inv_s = m.secondary == Shaft::held ? 0.0 : 1.0 / p_.inertia_secondary;
-  d.force_p = p_.drive_torque - p_.bearing_primary * direction(m.primary);
+  d.force_p = p_.drive_at(t) - p_.bearing_primary * direction(m.primary);
   d.force_s = -p_.load_torque - p_.bearing_secondary * direction(m.secondary);
   // (5.5): M0 − k_z·|M0|·sign φ̇s = M0·(1 − k_z·sign M0·sign φ̇s).
   d.gain_s = 1.0 - p_.tooth_friction * m.torque_sign * direction(m.secondary);
-  d.coupled = in_contact(m.contact);
+  d.coupled = in_contact(m.contact) && m.phase != Phase::parted;
   d.offset = m.contact == Contact::positive ? p_.half_backlash
            : m.contact == Contact::negative ? -p_.half_backlash : 0.0;
-  d.stiffness = p_.stiffness;
-  d.damping = p_.damping;
+  // The capped law within a phase is linear too: 2c without damping, or nothing.
+  d.stiffness = m.phase == Phase::capped ? 2 * p_.stiffness : p_.stiffness;
+  d.damping = m.phase == Phase::capped ? 0.0 : p_.damping;
   return d;
 }
 
 LinearForm GearModel::torque_form(const Mode& m) const {
-  if (!in_contact(m.contact)) return {};
-  const double offset = dynamics(m).offset;
-  return {p_.damping, -p_.damping, p_.stiffness, -p_.stiffness * offset};
-}
-
-GearState GearModel::derivative(const Mode& m, const GearState& s) const {
+  if (!in_contact(m.contact) || m.phase == Phase::parted) return {};
   const ModeDynamics d = dynamics(m);
-  const double m0 = torque(m, s);
-  return {d.inv_p * (d.force_p - m0), d.inv_s * (d.gain_s * m0 + d.force_s), s.omega_p - s.omega_s};
+  return {d.damping, -d.damping, d.stiffness, -d.stiffness * d.offset};
 }
 
-std::vector<Guard> GearModel::guards(const Mode& m) const {
+/// The capped law's phase at a state in contact: parted where spring and
+/// damper would pull, capped where the damping torque exceeds the spring
+/// torque (so at every impact with d > 0), else spring and damper.
+Phase GearModel::entry_phase(const Mode& m, const GearState& s) const {
+  if (!p_.capped_contact || !in_contact(m.contact) || m.contact == Contact::linear)
+    return Phase::spring_damper;
+  const double sigma = engagement(m), spring = p_.stiffness * contact_twist(s.dphi);
+  const double damping = p_.damping * (s.omega_p - s.omega_s);
+  if (sigma * (spring + damping) < 0 || (spring == 0 && damping == 0)) return Phase::parted;
+  return sigma * (damping - spring) > 0 ? Phase::capped : Phase::spring_damper;
+}
+
+/// The capped law's phase guards, σ the side: spring_damper ends when σ(c·u − d·u̇)
+/// or σ(c·u + d·u̇) falls below 0, capped when σ(d·u̇ − c·u) does, parted when
+/// the law would push again, −σ(c·u + d·u̇) < 0.
+void GearModel::capped_guards(const Mode& m, std::vector<Guard>& g) const {
+  const double sigma = engagement(m), c = p_.stiffness, d = p_.damping;
+  const double offset = dynamics(m).offset;
+  const LinearForm push{sigma * d, -sigma * d, sigma * c, -sigma * c * offset};    // σ(cu + du̇)
+  const LinearForm spring{-sigma * d, sigma * d, sigma * c, -sigma * c * offset};  // σ(cu − du̇)
+  auto negated = [](LinearForm f) { return LinearForm{-f.omega_p, -f.omega_s, -f.dphi, -f.constant}; };
+  switch (m.phase) {
+    case Phase::spring_damper:
+      g.push_back({GuardKind::damping_capped, spring});
+      g.push_back({GuardKind::flanks_part, push});
+      break;
+    case Phase::capped: g.push_back({GuardKind::damping_uncapped, negated(spring)}); break;
+    case Phase::parted: g.push_back({GuardKind::flanks_press, negated(push)}); break;
+  }
+}
+
+GearState GearModel::derivative(const Mode& m, const GearState& s, double t) const {
+  const ModeDynamics d = dynamics(m, t);
+  const double m0 = torque(m, s);
+  // The motor line and viscous friction: torques proportional to each shaft's speed.
+  // Stribeck bearings slide against less than their break-away level.
+  const double feedback_p = p_.primary_speed_feedback() * s.omega_p -
+      direction(m.primary) * p_.stribeck_relief(p_.bearing_primary, p_.sliding_primary, s.omega_p);
+  const double feedback_s = p_.viscous_secondary * s.omega_s -
+      direction(m.secondary) * p_.stribeck_relief(p_.bearing_secondary, p_.sliding_secondary, s.omega_s);
+  return {d.inv_p * (d.force_p - feedback_p - m0),
+          d.inv_s * (d.gain_s * m0 + d.force_s - feedback_s), s.omega_p - s.omega_s};
+}
+
+std::vector<Guard> GearModel::guards(const Mode& m, double t) const {
   std::vector<Guard> g;
   const double eps = p_.half_backlash;
   switch (m.contact) {
@@ -70,15 +114,21 @@ std::vector<Guard> GearModel::guards(const Mode& m) const {
     case Contact::negative: g.push_back({GuardKind::release, {0, 0, -1, -eps}}); break;
     case Contact::linear: break;
   }
+  if (p_.capped_contact && in_contact(m.contact) && m.contact != Contact::linear) capped_guards(m, g);
   const LinearForm m0 = torque_form(m);
   auto combine = [](double a, const LinearForm& f, double k) {  // a·f + k
     return LinearForm{a * f.omega_p, a * f.omega_s, a * f.dphi, a * f.constant + k};
   };
   if (m.primary == Shaft::forward) g.push_back({GuardKind::primary_stops, {1, 0, 0, 0}});
   if (m.primary == Shaft::backward) g.push_back({GuardKind::primary_stops, {-1, 0, 0, 0}});
-  if (m.primary == Shaft::held) {  // |M_a − M0| <= k_Rp
-    g.push_back({GuardKind::primary_breaks_forward, combine(1, m0, p_.bearing_primary - p_.drive_torque)});
-    g.push_back({GuardKind::primary_breaks_backward, combine(-1, m0, p_.bearing_primary + p_.drive_torque)});
+  if (m.primary == Shaft::held) {  // |M_a(t) − M0| <= k_Rp, M_a(t) = drive0 + slope·t on this piece
+    const double slope = p_.drive_slope(t), drive0 = p_.drive_at(t) - slope * t;
+    Guard forward{GuardKind::primary_breaks_forward, combine(1, m0, p_.bearing_primary - drive0)};
+    Guard backward{GuardKind::primary_breaks_backward, combine(-1, m0, p_.bearing_primary + drive0)};
+    forward.form.time = -slope;
+    backward.form.time = slope;
+    g.push_back(forward);
+    g.push_back(backward);
   }
   if (m.secondary == Shaft::forward) g.push_back({GuardKind::secondary_stops, {0, 1, 0, 0}});
   if (m.secondary == Shaft::backward) g.push_back({GuardKind::secondary_stops, {0, -1, 0, 0}});
@@ -110,8 +160,8 @@ int GearModel::torque_sign_at(const Mode& m, const GearState& s) const {
   return engagement(m) < 0 ? -1 : 1;
 }
 
-Shaft GearModel::resolve_primary(const Mode& m, const GearState& s) const {
-  const double net = p_.drive_torque - torque(m, s);
+Shaft GearModel::resolve_primary(const Mode& m, const GearState& s, double t) const {
+  const double net = p_.drive_at(t) - p_.primary_speed_feedback() * s.omega_p - torque(m, s);
   if (net > p_.bearing_primary) return Shaft::forward;
   if (-net > p_.bearing_primary) return Shaft::backward;
   return Shaft::held;
@@ -132,7 +182,7 @@ Shaft GearModel::resolve_secondary(const Mode& m, const GearState& s) const {
 /// at zero speed that was sliding that way is held too, or the torque could
 /// start it against the lock), the torque sign, and shafts at rest
 /// re-examined against their new friction levels.
-void GearModel::settle(Mode& m, GearState& s) const {
+void GearModel::settle(Mode& m, GearState& s, double t) const {
   const int engaged = engagement(m);
   if (p_.self_locking &&
       (s.omega_s * engaged < 0 || (s.omega_s == 0 && direction(m.secondary) * engaged < 0))) {
@@ -140,7 +190,7 @@ void GearModel::settle(Mode& m, GearState& s) const {
     m.secondary = Shaft::held;
   }
   m.torque_sign = torque_sign_at(m, s);
-  if (m.primary == Shaft::held) m.primary = resolve_primary(m, s);
+  if (m.primary == Shaft::held) m.primary = resolve_primary(m, s, t);
   if (m.secondary == Shaft::held) m.secondary = resolve_secondary(m, s);
   m.torque_sign = torque_sign_at(m, s);
 }
@@ -158,17 +208,18 @@ Mode GearModel::initial_mode(GearState& s) const {
   } else {
     m.contact = Contact::free;
   }
+  m.phase = entry_phase(m, s);
   auto start = [](bool friction, double omega) {
     if (!friction) return Shaft::frictionless;
     return omega > 0 ? Shaft::forward : omega < 0 ? Shaft::backward : Shaft::held;
   };
   m.primary = start(p_.primary_has_friction(), s.omega_p);
   m.secondary = start(p_.secondary_has_friction(), s.omega_s);
-  settle(m, s);
+  settle(m, s, 0);
   return m;
 }
 
-Mode GearModel::cross(const Mode& from, GuardKind kind, GearState& s) const {
+Mode GearModel::cross(const Mode& from, GuardKind kind, GearState& s, double t) const {
   Mode m = from;
   const double eps = p_.half_backlash;
   switch (kind) {
@@ -180,7 +231,7 @@ Mode GearModel::cross(const Mode& from, GuardKind kind, GearState& s) const {
       m.contact = eps > 0 ? Contact::free
                 : from.contact == Contact::positive ? Contact::negative : Contact::positive;
       break;
-    case GuardKind::primary_stops: s.omega_p = 0; m.primary = resolve_primary(m, s); break;
+    case GuardKind::primary_stops: s.omega_p = 0; m.primary = resolve_primary(m, s, t); break;
     case GuardKind::secondary_stops:
       s.omega_s = 0;
       m.secondary = resolve_secondary(m, s);
@@ -192,8 +243,16 @@ Mode GearModel::cross(const Mode& from, GuardKind kind, GearState& s) const {
     case GuardKind::secondary_breaks_forward: m.secondary = Shaft::forward; break;
     case GuardKind::secondary_breaks_backward: m.secondary = Shaft::backward; break;
     case GuardKind::torque_reverses: m.torque_sign = -from.torque_sign; return m;
+    case GuardKind::drive_breakpoint:  // the drive jumped or bent: a held shaft may break away
+      settle(m, s, t);
+      return m;
+    case GuardKind::damping_capped: m.phase = Phase::capped; return m;
+    case GuardKind::damping_uncapped: m.phase = Phase::spring_damper; return m;
+    case GuardKind::flanks_part: m.phase = Phase::parted; return m;
+    case GuardKind::flanks_press: m.phase = Phase::spring_damper; return m;
   }
-  if (m.contact != from.contact) settle(m, s);
+  if (m.contact != from.contact) m.phase = entry_phase(m, s);
+  if (m.contact != from.contact) settle(m, s, t);
   else m.torque_sign = torque_sign_at(m, s);
   return m;
 }
@@ -225,8 +284,14 @@ std::vector<std::string> GearModel::active_terms() const {
   if (p_.bearing_secondary > 0) t.push_back("secondary bearing friction (6.6)");
   if (p_.tooth_friction > 0) t.push_back("tooth friction (5.5)");
   if (p_.self_locking) t.push_back("self-locking (6.7)");
-  if (p_.drive_torque != 0) t.push_back("drive torque M_a");
+  if (p_.drive_torque != 0 && p_.drive_profile.empty()) t.push_back("drive torque M_a");
+  if (!p_.drive_profile.empty()) t.push_back("drive torque M_a(t) from a profile");
+  if (p_.motor_slope > 0) t.push_back("motor line M_a·(1 − φ̇p/φ̇_noload)");
+  if (p_.viscous_primary > 0) t.push_back("primary viscous friction");
+  if (p_.viscous_secondary > 0) t.push_back("secondary viscous friction");
   if (p_.load_torque != 0) t.push_back("load torque");
+  if (p_.reactive_load > 0) t.push_back("reactive load torque (with the secondary friction)");
+  if (p_.stribeck()) t.push_back("Stribeck bearing friction");
   return t;
 }
 

@@ -25,6 +25,8 @@ std::string to_string(Shaft s) {
 std::string to_string(const Mode& m) {
   std::string text = to_string(m.contact) + " p:" + to_string(m.primary) + " s:" + to_string(m.secondary);
   if (m.torque_sign != 0) text += m.torque_sign > 0 ? " M0+" : " M0-";
+  if (m.phase == Phase::capped) text += " capped";
+  if (m.phase == Phase::parted) text += " parted";
   return text;
 }
 

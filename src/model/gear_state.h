@@ -22,6 +22,12 @@ enum class Contact { free, positive, negative, linear };
 /// backward, or is `held` at exactly zero speed (stuck, or self-locked).
 enum class Shaft { frictionless, forward, backward, held };
 
+/// Where a contact under the capped law (Modelica's ElastoBacklash) is:
+/// spring and damper (the damping torque below the spring torque), the damping
+/// capped at the spring torque (M0 = 2·c·u), or parted inside the contact zone
+/// (the law would pull: M0 = 0). The paper's law stays in spring_damper.
+enum class Phase { spring_damper, capped, parted };
+
 /// The discrete state of the hybrid model: between two events it is constant
 /// and the equations are linear with constant forcing.
 struct Mode {
@@ -31,6 +37,7 @@ struct Mode {
   /// Sign of the transmitted torque M0 while in contact with tooth friction,
   /// since (5.5) uses |M0|; 0 when it does not matter.
   int torque_sign = 0;
+  Phase phase = Phase::spring_damper;  ///< only the capped law leaves spring_damper
 
   bool operator==(const Mode&) const = default;
 };

@@ -118,6 +118,13 @@ class Allocator {
                                       std::abs(value), 1, feature_of("alpha2"));
       }
     }
+    // A drive that varies in time (issue 14): a function generator of machine
+    // time; a machine without one reports the shortfall.
+    for (const auto& [node, points] : c_.pwl_sources)
+      labels_[node] = take(ElementKind::function_generator, node,
+                           fmt::format("{}: the drive torque over machine time, linear between {} points", node,
+                                       points.size()),
+                           feature_of("alpha2")).label;
   }
 
   void amplifier(const circuit::Amplifier& amp) {

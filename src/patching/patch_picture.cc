@@ -81,6 +81,12 @@ std::string to_dot(const Allocation& a, const circuit::Circuit& c) {
       dot += fmt::format("  {} [shape=plaintext, label={}];\n", dot_string("src_" + node),
                          dot_string(fmt::format("{} MU", format_number(value))));
     }
+  for (const auto& [node, points] : c.pwl_sources) {  // a drive that varies in time: its function generator
+    driver[node] = "src_" + node;
+    dot += fmt::format("  {} [shape=box, label={}];\n", dot_string("src_" + node),
+                       dot_string(fmt::format("{}\nfunction of time, {} points",
+                                                    a.find(node) ? a.find(node)->label : node, points.size())));
+  }
   for (const auto& b : c.blocks)  // a block's input
     dot += fmt::format("  {} -> {};\n", dot_string(driver.at(b.nodes.at(0))), dot_string(b.name));
   // every potentiometer that is not in a connection: thresholds, initial values, constants

@@ -32,9 +32,15 @@ std::string feature_of(const std::string& instance) {
       {"lock_half", "self-locking"},   {"cmp_engaged_p", "self-locking"}, {"cmp_engaged_n", "self-locking"},
       {"alpha_lock", "self-locking"},  {"delta2", "self-locking"},       {"alpha_load", "load torque"},
       {"alpha2", "drive torque"},      {"dz", "backlash"},               {"a", "backlash"},
+      {"alpha_speed_p", "speed feedback on the primary"}, {"alpha_viscous_s", "viscous friction on the secondary"},
+      {"alpha_stribeck_p", "Stribeck friction"}, {"alpha_stribeck_s", "Stribeck friction"},
   };
   auto it = features.find(instance);
-  return it == features.end() ? "" : it->second;
+  if (it != features.end()) return it->second;
+  // issue 14's blocks come in families named by prefix
+  if (instance.rfind("strib_", 0) == 0) return "Stribeck friction";
+  if (instance.rfind("cap_", 0) == 0 || instance.rfind("sum_cap_", 0) == 0) return "capped contact law";
+  return "";
 }
 
 }  // namespace gearpatch::patching

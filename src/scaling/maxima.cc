@@ -125,7 +125,11 @@ double drive_maximum(const ScalingInput& s, Maxima& m) {
     return *s.rated_torque;
   }
   if (s.gear.drive_torque != 0) {
-    m.basis[Maximum::drive_torque] = "|M_a|, the constant drive torque";
+    // A profile's or a motor line's largest |M_a| stands in drive_torque (scene.cc).
+    m.basis[Maximum::drive_torque] = !s.gear.drive_profile.empty() ? "the largest |M_a| of the drive profile"
+                                     : s.gear.motor_slope > 0
+                                         ? "|M_a| at standstill, the motor's stall torque"
+                                         : "|M_a|, the constant drive torque";
     return std::abs(s.gear.drive_torque);
   }
   return 0;

@@ -309,6 +309,9 @@ Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given
   patch.initial = s.initial;
   patch.drive_torque = p.drive_torque;
   patch.load_torque = p.load_torque;
+  patch.drive_profile = p.drive_profile;
+  patch.capped_contact = p.capped_contact;
+  patch.stribeck_speed = p.stribeck_speed;
   patch.duration = s.duration;
   patch.machine = s.machine;
   patch.k0 = s.machine.integrator_constant;

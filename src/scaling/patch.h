@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "machine/machine_profile.h"
+#include "model/drive_profile.h"
 #include "model/gear_state.h"
 #include "scaling/maxima.h"
 #include "scaling/peaks.h"
@@ -66,6 +67,9 @@ struct Patch {
   GearState initial;        ///< φ̇p(0), φ̇s(0), Δφ(0): the signed initial values
   double drive_torque = 0;  ///< M_a, its sign for the drive source
   double load_torque = 0;   ///< its sign picks the reference alpha_load takes
+  DriveProfile drive_profile;  ///< M_a(t) for a PWL drive source; empty: DC
+  bool capped_contact = false;  ///< the capped law, which the circuit does not realise yet
+  double stribeck_speed = 0;    ///< φ̇_S of Stribeck bearings, rad/s; 0: Coulomb
   double duration = 1;      ///< s of real time
   MachineProfile machine;
   double beta = 1, k0 = 1, unit_volts = 10;

@@ -85,7 +85,7 @@ PhysicalPeaks simulate_peaks(const ScalingInput& in, const std::vector<Output>& 
   PhysicalPeaks peaks;
   peaks.drive = std::abs(p.drive_torque);
   PeakObserver observer(model, first, peaks);
-  auto stepper = make_exact_stepper();
+  auto stepper = make_reference_stepper(p);
   integrate(model, *stepper, in.initial, spec, observer, more);
   return peaks;
 }

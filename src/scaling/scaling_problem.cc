@@ -34,7 +34,9 @@ std::optional<CoefficientRequirement::Source> source_of(Setting s, bool backlash
     case Setting::alpha4:
     case Setting::alpha_tooth: return S{Maximum::torque, Maximum::torque};
     case Setting::alpha8: return S{Maximum::speed_primary, Maximum::speed_primary};
-    case Setting::alpha9: return S{Maximum::speed_secondary, Maximum::speed_secondary};
+    case Setting::alpha9:
+    case Setting::alpha_viscous_s: return S{Maximum::speed_secondary, Maximum::speed_secondary};
+    case Setting::alpha_speed_p: return S{Maximum::speed_primary, Maximum::speed_primary};
     case Setting::alpha10:
     case Setting::alpha14: return S{Maximum::relative_speed, Maximum::relative_speed};
     case Setting::alpha11:  // the dead zone's output is Δφ' on the scale of Δφ
@@ -412,6 +414,10 @@ std::string coefficient_key(Setting s) {
     case Setting::alpha11: return "gear.backlash";
     case Setting::alpha13: return "gear.stiffness";
     case Setting::alpha14: return "gear.restitution";
+    case Setting::alpha_speed_p: return "friction.viscous_primary";  // or the motor line's drive.no_load_speed
+    case Setting::alpha_viscous_s: return "friction.viscous_secondary";
+    case Setting::alpha_stribeck_p: return "friction.sliding_primary";
+    case Setting::alpha_stribeck_s: return "friction.sliding_secondary";
     default: return "";
   }
 }

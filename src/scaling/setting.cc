@@ -15,7 +15,10 @@ constexpr std::pair<Setting, const char*> setting_table[] = {
     {Setting::alpha11, "alpha11"}, {Setting::alpha12, "alpha12"},
     {Setting::alpha13, "alpha13"}, {Setting::alpha14, "alpha14"},
     {Setting::alpha_tooth, "alpha_tooth"}, {Setting::alpha_load, "alpha_load"},
-    {Setting::alpha_lock, "alpha_lock"},   {Setting::a, "a"},
+    {Setting::alpha_lock, "alpha_lock"},
+    {Setting::alpha_speed_p, "alpha_speed_p"}, {Setting::alpha_viscous_s, "alpha_viscous_s"},
+    {Setting::alpha_stribeck_p, "alpha_stribeck_p"}, {Setting::alpha_stribeck_s, "alpha_stribeck_s"},
+    {Setting::a, "a"},
     {Setting::delta1, "delta1"},   {Setting::delta2, "delta2"},
     {Setting::alpha_stage, "alpha_stage"},
 };

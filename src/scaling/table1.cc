@@ -59,6 +59,15 @@ void primary(Builder& b, const ScalingInput& s, const GearParameters& p, const M
                m.drive_torque / scale, in + "the drive signal Ma/Mam",
                "no drive torque (drive.torque = 0 and no drive.rated_torque)");
   b.integrator(true, Setting::alpha3, "M0m/(Θp·β·φ̇pm)", m.torque / scale, in + "m", "");
+  if (p.stribeck() && p.sliding_primary < p.bearing_primary)
+    b.integrator(true, Setting::alpha_stribeck_p, "(k_Sp − k_Cp)/(n·Θp·β·φ̇pm)",
+                 (p.bearing_primary - p.sliding_primary) / stribeck_steps / scale,
+                 in + "each of the n limiters of the Stribeck function generator on Wp", "");
+  // Issue 14: the motor line and viscous friction feed the speed back; listed only when used.
+  if (p.primary_speed_feedback() > 0)
+    b.integrator(true, Setting::alpha_speed_p, "(M_stall/φ̇_noload + b_p)/(Θp·β)",
+                 p.primary_speed_feedback() / p.inertia_primary,
+                 in + "Wp (the motor line's fall with speed and viscous friction)", "");
 }
 
 void secondary(Builder& b, const GearParameters& p, const Maxima& m) {
@@ -82,6 +91,13 @@ void secondary(Builder& b, const GearParameters& p, const Maxima& m) {
                std::abs(p.load_torque) / scale,
                in + reference(-p.load_torque) + " (load torque, opposing positive rotation when > 0)",
                "no load torque (drive.load_torque = 0)");
+  if (p.stribeck() && p.sliding_secondary < p.bearing_secondary)
+    b.integrator(true, Setting::alpha_stribeck_s, "(k_Ss − k_Cs)/(n·Θs·β·φ̇sm)",
+                 (p.bearing_secondary - p.sliding_secondary) / stribeck_steps / scale,
+                 in + "each of the n limiters of the Stribeck function generator on Ws", "");
+  if (p.viscous_secondary > 0)
+    b.integrator(true, Setting::alpha_viscous_s, "b_s/(Θs·β)", p.viscous_secondary / p.inertia_secondary,
+                 in + "Ws (viscous friction)", "");
   b.integrator(p.self_locking, Setting::alpha_lock, "M_Rem/(Θs·β·φ̇sm)",
                lock_torque(m, p) / scale,
                in + "the self-locking reaction (blocks 16/17: steep characteristic of Ws, "

@@ -8,6 +8,9 @@
 
 namespace gearpatch {
 
+/// Limiters per Stribeck function generator (circuit/stribeck_generator.h).
+inline constexpr int stribeck_steps = 16;
+
 struct GearParameters;
 struct ScalingInput;
 

@@ -15,6 +15,9 @@
 #include "common/utf8.h"
 #include "common/option_error.h"
 #include "machine/machine_file.h"
+#include "model/stage_reduction.h"
+#include "scene/drive_table.h"
+#include "scene/units.h"
 
 namespace gearpatch {
 namespace po = boost::program_options;
@@ -27,7 +30,7 @@ const std::map<std::string, std::string>& scene_keys() {
       {"gear.stiffness", "c, N·m/rad, > 0"},
       {"gear.restitution", "k in [0, 1] (give this or damping)"},
       {"gear.damping", "d, N·m·s/rad, >= 0 (give this or restitution)"},
-      {"gear.backlash", "2ε, rad, total play, >= 0 (default 0)"},
+      {"gear.backlash", "2ε, total play, >= 0, rad, or with its unit: 0.5 deg, 30 arcmin (default 0)"},
       {"friction.bearing_primary", "k_Rp, N·m, >= 0 (default 0)"},
       {"friction.bearing_secondary", "k_Rs, N·m, >= 0 (default 0)"},
       {"friction.mesh_efficiency", "η_z in (0, 1] (default 1: no tooth friction)"},
@@ -35,10 +38,10 @@ const std::map<std::string, std::string>& scene_keys() {
       {"drive.torque", "M_a, N·m on the primary (default 0)"},
       {"drive.load_torque", "N·m on the secondary, opposing positive rotation (default 0)"},
       {"drive.rated_torque", "M_am from the drive's data, N·m, > 0 (optional)"},
-      {"drive.rated_speed", "φ̇pm = φ̇sm from the drive's data, rad/s, > 0 (optional)"},
-      {"initial.speed_primary", "φ̇p(0), rad/s (default 0)"},
-      {"initial.speed_secondary", "φ̇s(0), rad/s (default 0)"},
-      {"initial.twist", "Δφ(0) = φp − φs, rad (default 0)"},
+      {"drive.rated_speed", "φ̇pm = φ̇sm from the drive's data, rad/s or rpm, > 0 (optional)"},
+      {"initial.speed_primary", "φ̇p(0), rad/s, or with its unit: deg/s, rpm (default 0)"},
+      {"initial.speed_secondary", "φ̇s(0), rad/s, or with its unit: deg/s, rpm (default 0)"},
+      {"initial.twist", "Δφ(0) = φp − φs, rad, or with its unit: deg (default 0)"},
       {"run.duration", "s of real time, > 0"},
       {"run.output_step", "s between output rows, > 0 (default duration/2000)"},
       {"maxima.drive_torque", "override M_am, N·m, > 0"},
@@ -56,6 +59,34 @@ const std::map<std::string, std::string>& scene_keys() {
       {"machine.input_resistance", "ohms of a weight-1 input, 1e3 … 1e9 (default 1e6)"},
       {"machine.potentiometer_resistance", "ohms, 10 … 1e8 (default 1e4)"},
       {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
+      // What a drive engineer brings (issue 14): values in each shaft's own
+      // units, referred to the primary by the tool; drive profiles; motor line.
+      {"gear.contact_law", "paper|capped (default paper): capped is Modelica's ElastoBacklash, the damping torque capped at the spring torque and no pull; k is inverted for the law chosen"},
+      {"friction.characteristic", "coulomb|stribeck (default coulomb; add viscous_* for Coulomb + viscous): with stribeck, bearing_* are the break-away levels k_S"},
+      {"friction.sliding_primary", "k_C, N·m, the primary's sliding level at high speed, 0 <= k_C <= bearing_primary (stribeck)"},
+      {"friction.sliding_secondary", "k_C, N·m referred, the secondary's sliding level, 0 <= k_C <= bearing_secondary (stribeck)"},
+      {"friction.stribeck_speed", "φ̇_S, rad/s or rpm, > 0: the level falls as k_C + (k_S − k_C)·exp(−|φ̇|/φ̇_S) (stribeck)"},
+      {"gear.stages", "file of [stage] stiffness, damping sections referred to the primary (as for `gearpatch reduce`; path relative to the scene): c and d of the equivalent gear by (2.8), instead of gear.stiffness and restitution/damping"},
+      {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
+      {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
+      {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
+      {"load.backlash", "total play at the load shaft, rad or deg, >= 0: 2ε = i·play (instead of gear.backlash)"},
+      {"load.bearing_friction", "N·m on the load shaft, >= 0: k_Rs = M/i (instead of friction.bearing_secondary)"},
+      {"load.torque", "N·m on the load shaft: M_L = M/i (instead of drive.load_torque)"},
+      {"load.viscous_friction", "N·m·s/rad on the load shaft, >= 0: b_s = b/i² (instead of friction.viscous_secondary)"},
+      {"load.speed", "initial speed of the load shaft, rad/s or rpm: φ̇s(0) = i·speed (instead of initial.speed_secondary)"},
+      {"drive.load", "active|reactive (default active): a reactive load resists motion like friction and never drives the shaft"},
+      {"drive.profile", "constant|step|ramp|table|motor (default constant): how M_a varies"},
+      {"drive.step_time", "s, >= 0: profile step, M_a = drive.torque before, drive.step_torque from then on"},
+      {"drive.step_torque", "N·m: profile step, M_a after drive.step_time"},
+      {"drive.ramp_start", "s, >= 0 (default 0): profile ramp, M_a = drive.torque until then"},
+      {"drive.ramp_end", "s, > ramp_start: profile ramp, M_a linear from drive.torque to drive.ramp_torque"},
+      {"drive.ramp_torque", "N·m: profile ramp, M_a from drive.ramp_end on"},
+      {"drive.table", "file of 'time, torque' lines (s, N·m; linear between, constant outside; path relative to the scene): profile table"},
+      {"drive.stall_torque", "M_stall, N·m, > 0: profile motor, M_a = M_stall·(1 − φ̇p/φ̇_noload)"},
+      {"drive.no_load_speed", "φ̇_noload, rad/s or rpm, > 0: profile motor"},
+      {"friction.viscous_primary", "b_p, N·m·s/rad, >= 0 (default 0): M = b_p·φ̇p"},
+      {"friction.viscous_secondary", "b_s, N·m·s/rad referred to the primary, >= 0 (default 0)"},
   };
   return keys;
 }
@@ -155,6 +186,18 @@ std::map<std::string, std::string> read_values(const std::string& text, const Ke
 
 constexpr double largest_magnitude = 1e30, smallest_magnitude = 1e-30;
 
+/// The keys that measure an angle or a speed take a unit after the number.
+Quantity quantity_of(const std::string& key) {
+  static const std::map<std::string, Quantity> stated = {
+      {"gear.backlash", Quantity::angle},         {"initial.twist", Quantity::angle},
+      {"load.backlash", Quantity::angle},         {"initial.speed_primary", Quantity::speed},
+      {"initial.speed_secondary", Quantity::speed}, {"load.speed", Quantity::speed},
+      {"drive.rated_speed", Quantity::speed},     {"drive.no_load_speed", Quantity::speed},
+  };
+  auto it = stated.find(key);
+  return it == stated.end() ? Quantity::plain : it->second;
+}
+
 /// Typed access to the raw strings with the checks every key shares.
 class Reader {
  public:
@@ -174,8 +217,9 @@ class Reader {
 
   std::optional<double> number(const std::string& key) const {
     if (!has(key)) return std::nullopt;
-    auto value = parse_finite(values_.at(key));
-    if (!value) fail(key, "not a finite number");
+    std::string why;
+    auto value = parse_quantity(values_.at(key), quantity_of(key), why);
+    if (!value) fail(key, why);
     // Physical values in SI units are kept within 1e-30 … 1e30 in magnitude:
     // the solver forms products and quotients of several of them (c/Θ,
     // (c/Θ)²·Δφ, d·Δφ̇ …), which must neither overflow nor underflow.
@@ -223,8 +267,14 @@ class Reader {
 
 void read_gear(const Reader& r, Scene& s) {
   s.inertia_primary = r.positive("gear.inertia_primary");
-  s.inertia_secondary = r.positive("gear.inertia_secondary");
-  s.stiffness = r.positive("gear.stiffness");
+  if (!r.has("load.inertia")) s.inertia_secondary = r.positive("gear.inertia_secondary");
+  if (r.has("gear.stages")) {  // c and d come from the stages (read_stages)
+    for (const char* key : {"gear.stiffness", "gear.restitution", "gear.damping", "load.stiffness"})
+      if (r.has(key)) r.fail(key, "give either gear.stages or the coupling's stiffness and damping, not both");
+    s.backlash = r.non_negative("gear.backlash", 0);
+    return;
+  }
+  if (!r.has("load.stiffness")) s.stiffness = r.positive("gear.stiffness");
   s.backlash = r.non_negative("gear.backlash", 0);
   s.restitution = r.number("gear.restitution");
   s.damping = r.number("gear.damping");
@@ -312,6 +362,152 @@ void read_machine(const Reader& r, Scene& s, const std::string& chosen) {
     m.time_scale = machine_value(r, "machine.time_scale", 1);
 }
 
+/// One key on the load shaft, referred to the primary into `target`;
+/// refused beside the key it replaces.
+void refer(const Reader& r, Scene& s, const std::string& key, const std::string& replaces,
+           double factor, const std::string& symbol, const std::string& formula, double& target,
+           bool non_negative = true) {
+  if (!r.has(key)) return;
+  if (r.has(replaces)) r.fail(key, "give either " + key + " (load shaft) or " + replaces + " (referred), not both");
+  const double given = *r.number(key);
+  if (non_negative && given < 0) r.fail(key, "must be >= 0");
+  target = given * factor;
+  s.extras.referrals.push_back({key, given, target, symbol, formula});
+}
+
+void read_load_shaft(const Reader& r, Scene& s) {
+  DriveExtras& x = s.extras;
+  x.ratio = r.positive("gear.ratio", 1.0);
+  const double i = x.ratio;
+  if (r.has("load.inertia")) {
+    if (r.has("gear.inertia_secondary"))
+      r.fail("load.inertia", "give either load.inertia (load shaft) or gear.inertia_secondary (referred), not both");
+    r.positive("load.inertia");
+  }
+  refer(r, s, "load.inertia", "gear.inertia_secondary", 1 / (i * i), "Θs kg·m²", "J/i²", s.inertia_secondary);
+  if (r.has("load.stiffness")) r.positive("load.stiffness");
+  refer(r, s, "load.stiffness", "gear.stiffness", 1 / (i * i), "c N·m/rad", "c/i²", s.stiffness);
+  refer(r, s, "load.backlash", "gear.backlash", i, "2ε rad", "i·play", s.backlash);
+  refer(r, s, "load.bearing_friction", "friction.bearing_secondary", 1 / i, "k_Rs N·m", "M/i", s.bearing_secondary);
+  refer(r, s, "load.torque", "drive.load_torque", 1 / i, "M_L N·m", "M/i", s.load_torque, false);
+  refer(r, s, "load.viscous_friction", "friction.viscous_secondary", 1 / (i * i), "b_s N·m·s/rad", "b/i²",
+        x.viscous_secondary);
+  refer(r, s, "load.speed", "initial.speed_secondary", i, "φ̇s(0) rad/s", "i·ω", s.speed_secondary, false);
+}
+
+/// The keys of one drive profile, refused with any other profile.
+void only_with(const Reader& r, const std::string& profile, const std::vector<std::string>& keys) {
+  for (const auto& key : keys)
+    if (r.has(key) && r.raw("drive.profile") != profile)
+      r.fail(key, "only with drive.profile = " + profile);
+}
+
+void read_drive_profile(const Reader& r, Scene& s) {
+  DriveExtras& x = s.extras;
+  x.profile = r.has("drive.profile") ? r.raw("drive.profile") : "constant";
+  only_with(r, "step", {"drive.step_time", "drive.step_torque"});
+  only_with(r, "ramp", {"drive.ramp_start", "drive.ramp_end", "drive.ramp_torque"});
+  only_with(r, "table", {"drive.table"});
+  only_with(r, "motor", {"drive.stall_torque", "drive.no_load_speed"});
+  const double m0 = s.drive_torque;
+  auto& points = x.profile_points;
+  if (x.profile == "constant") return;
+  if (x.profile == "step") {
+    const double at = r.non_negative("drive.step_time", 0);
+    if (!r.has("drive.step_time")) r.required("drive.step_time");
+    points = {{at, m0}, {at, r.required("drive.step_torque")}};
+  } else if (x.profile == "ramp") {
+    const double start = r.non_negative("drive.ramp_start", 0);
+    const double end = r.required("drive.ramp_end");
+    if (!(end > start)) r.fail("drive.ramp_end", "must be later than drive.ramp_start");
+    points = {{start, m0}, {end, r.required("drive.ramp_torque")}};
+  } else if (x.profile == "table") {
+    if (!r.has("drive.table")) r.required("drive.table");
+    std::filesystem::path file = r.raw("drive.table");
+    if (file.is_relative()) file = std::filesystem::path(s.source).parent_path() / file;
+    std::error_code ec;  // a device or FIFO would never end
+    if (!std::filesystem::is_regular_file(file, ec)) r.fail("drive.table", "not a regular file: " + file.string());
+    try {
+      points = load_drive_table(file.string());
+    } catch (const Error& e) {
+      r.fail("drive.table", e.what());
+    }
+  } else if (x.profile == "motor") {
+    if (r.has("drive.torque")) r.fail("drive.torque", "drive.profile = motor takes drive.stall_torque instead");
+    s.drive_torque = r.positive("drive.stall_torque");
+    x.motor_slope = s.drive_torque / r.positive("drive.no_load_speed");
+    return;
+  } else {
+    r.fail("drive.profile", "must be constant, step, ramp, table or motor");
+  }
+  // The scaling's a-priori drive maximum: the profile's largest |M_a|, signed.
+  s.drive_torque = 0;
+  for (const auto& [t, m] : points)
+    if (std::abs(m) > std::abs(s.drive_torque)) s.drive_torque = m;
+}
+
+/// gear.stages: n elastic members in series reduced to one c, d by (2.8).
+void read_stages(const Reader& r, Scene& s) {
+  if (!r.has("gear.stages")) return;
+  std::filesystem::path file = r.raw("gear.stages");
+  if (file.is_relative()) file = std::filesystem::path(s.source).parent_path() / file;
+  std::error_code ec;  // a device or FIFO would never end
+  if (!std::filesystem::is_regular_file(file, ec)) r.fail("gear.stages", "not a regular file: " + file.string());
+  try {
+    const StageReduction reduced = reduce_stages(load_stages(file.string()));
+    s.stiffness = reduced.stiffness;
+    s.damping = reduced.damping;
+  } catch (const Error& e) {
+    r.fail("gear.stages", e.what());
+  }
+}
+
+/// A Stribeck dip: the sliding levels below the break-away levels and the speed it decays over.
+void read_stribeck(const Reader& r, Scene& s) {
+  const std::string kind = r.has("friction.characteristic") ? r.raw("friction.characteristic") : "coulomb";
+  if (kind != "coulomb" && kind != "stribeck")
+    r.fail("friction.characteristic", "must be coulomb or stribeck");
+  for (const char* key : {"friction.sliding_primary", "friction.sliding_secondary", "friction.stribeck_speed"})
+    if (r.has(key) && kind != "stribeck") r.fail(key, "only with friction.characteristic = stribeck");
+  if (kind != "stribeck") return;
+  DriveExtras& x = s.extras;
+  x.stribeck_speed = r.positive("friction.stribeck_speed");
+  x.sliding_primary = r.non_negative("friction.sliding_primary", s.bearing_primary);
+  x.sliding_secondary = r.non_negative("friction.sliding_secondary", s.bearing_secondary);
+  if (x.sliding_primary > s.bearing_primary)
+    r.fail("friction.sliding_primary", "must not exceed the break-away level friction.bearing_primary");
+  if (x.sliding_secondary > s.bearing_secondary)
+    r.fail("friction.sliding_secondary", "must not exceed the break-away level friction.bearing_secondary");
+}
+
+/// gear.ratio, [load], drive.load, drive.profile and viscous friction (issue 14).
+void read_drive_engineer(const Reader& r, Scene& s) {
+  read_stages(r, s);
+  read_load_shaft(r, s);
+  if (r.has("drive.load")) {
+    const std::string kind = r.raw("drive.load");
+    if (kind != "active" && kind != "reactive") r.fail("drive.load", "must be active or reactive");
+    s.extras.reactive_load = kind == "reactive";
+    if (s.extras.reactive_load && s.load_torque < 0)
+      r.fail(r.has("load.torque") ? "load.torque" : "drive.load_torque",
+             "a reactive load is a magnitude (it opposes whichever way the shaft turns): must be >= 0");
+  }
+  if (r.has("gear.contact_law")) {
+    const std::string law = r.raw("gear.contact_law");
+    if (law != "paper" && law != "capped") r.fail("gear.contact_law", "must be paper or capped");
+    s.extras.capped_contact = law == "capped";
+    if (s.extras.capped_contact && s.backlash == 0)
+      r.fail("gear.contact_law", "the capped law needs backlash > 0 (gear.backlash or load.backlash)");
+    if (s.extras.capped_contact && s.restitution && *s.restitution == 0)
+      r.fail("gear.restitution", "the capped law reaches k = 0 only with infinite damping: must be > 0");
+  }
+  read_stribeck(r, s);
+  s.extras.viscous_primary = r.non_negative("friction.viscous_primary", 0);
+  if (r.has("friction.viscous_secondary"))
+    s.extras.viscous_secondary = r.non_negative("friction.viscous_secondary", 0);
+  read_drive_profile(r, s);
+}
+
 }  // namespace
 
 Scene parse_scene(const std::string& file_text, const std::string& source) {
@@ -336,6 +532,7 @@ Scene parse_scene(const std::string& file_text, const std::string& source, const
   s.speed_primary = r.number("initial.speed_primary").value_or(0);
   s.speed_secondary = r.number("initial.speed_secondary").value_or(0);
   s.twist = r.number("initial.twist").value_or(0);
+  read_drive_engineer(r, s);
   s.duration = r.positive("run.duration");
   if (r.has("run.output_step")) s.output_step = r.positive("run.output_step");
   for (const auto& [key, help] : scene_keys())

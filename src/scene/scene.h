@@ -2,10 +2,40 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "machine/machine_profile.h"
 
 namespace gearpatch {
+
+/// One value the user gave on the load shaft and what the tool referred it to
+/// on the primary, for `settings` (e.g. Θs = J_load/i²).
+struct Referral {
+  std::string key;       ///< the scene key, "load.inertia"
+  double given = 0;      ///< SI, on the load shaft
+  double referred = 0;   ///< SI, on the primary
+  std::string symbol;    ///< "Θs", with its unit
+  std::string formula;   ///< "J/i²"
+};
+
+/// What a drive engineer brings beyond the paper's equivalent gear (issue
+/// 14): the gear ratio and values on the load shaft (already referred into
+/// the fields of Scene), a drive torque that varies in time or follows a
+/// motor line, viscous friction, and whether the load is reactive.
+struct DriveExtras {
+  double ratio = 1;                     ///< i = φ̇p/φ̇load
+  std::vector<Referral> referrals;      ///< each load-shaft value given
+  std::string profile = "constant";     ///< constant, step, ramp, table, motor
+  std::vector<std::pair<double, double>> profile_points;  ///< (t, M_a), referred
+  double motor_slope = 0;               ///< M_stall/φ̇_noload, N·m·s/rad
+  double viscous_primary = 0;           ///< b_p, N·m·s/rad
+  double viscous_secondary = 0;         ///< b_s referred to the primary
+  bool reactive_load = false;           ///< the load resists motion, never drives it
+  bool capped_contact = false;          ///< gear.contact_law = capped (ElastoBacklash)
+  double sliding_primary = 0, sliding_secondary = 0;  ///< Stribeck: k_C, N·m (referred)
+  double stribeck_speed = 0;            ///< φ̇_S, rad/s; 0 for Coulomb bearings
+};
 
 /// A gear drive as the user describes it in a scene file: the equivalent
 /// single-stage gear of the paper (sections 3-5) in SI units, its drive,
@@ -49,6 +79,8 @@ struct Scene {
   std::map<std::string, double> maxima;
 
   MachineProfile machine;
+
+  DriveExtras extras;  ///< [load], gear.ratio and the new [drive]/[friction] keys
 
   /// Line of `section.key` in the source, 0 if unknown; for messages.
   std::map<std::string, int> lines;

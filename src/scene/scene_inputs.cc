@@ -1,5 +1,6 @@
 #include "scene/scene_inputs.h"
 
+#include "model/capped_restitution.h"
 #include "model/restitution.h"
 
 namespace gearpatch {
@@ -10,14 +11,31 @@ GearParameters gear_parameters(const Scene& s) {
   p.inertia_secondary = s.inertia_secondary;
   p.stiffness = s.stiffness;
   p.half_backlash = s.backlash / 2;
+  p.capped_contact = s.extras.capped_contact;
   p.damping = s.damping ? *s.damping
-                        : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
+              : p.capped_contact
+                  ? damping_for_capped_restitution(*s.restitution, s.stiffness, p.effective_inertia())
+                  : damping_for_restitution(*s.restitution, s.stiffness, p.effective_inertia());
   p.bearing_primary = s.bearing_primary;
   p.bearing_secondary = s.bearing_secondary;
   p.tooth_friction = 1.0 - s.mesh_efficiency;
   p.self_locking = s.self_locking;
   p.drive_torque = s.drive_torque;
   p.load_torque = s.load_torque;
+  const DriveExtras& x = s.extras;
+  if (!x.profile_points.empty()) p.drive_profile = DriveProfile(x.profile_points);
+  p.motor_slope = x.motor_slope;
+  p.viscous_primary = x.viscous_primary;
+  p.viscous_secondary = x.viscous_secondary;
+  p.stribeck_speed = x.stribeck_speed;
+  p.sliding_primary = x.sliding_primary;
+  p.sliding_secondary = x.sliding_secondary;
+  if (x.reactive_load) {  // resists motion like friction: the secondary's friction level
+    p.reactive_load = s.load_torque;
+    p.bearing_secondary += s.load_torque;
+    p.sliding_secondary += s.load_torque;  // a reactive load has no Stribeck dip
+    p.load_torque = 0;
+  }
   return p;
 }
 

@@ -29,8 +29,8 @@ class AdaptiveSegment : public Segment {
   }
 
   double advance() override {
-    auto rhs = [this](const Vector& y, Vector& dy, double) {
-      dy = to_vector(model_.derivative(mode_, to_state(y)));
+    auto rhs = [this](const Vector& y, Vector& dy, double t) {
+      dy = to_vector(model_.derivative(mode_, to_state(y), t));
     };
     if (stepper_.current_time() < horizon_) stepper_.do_step(rhs);
     return std::min(stepper_.current_time(), horizon_);

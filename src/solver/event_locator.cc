@@ -36,7 +36,7 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
                                const std::function<void(double, double)>& on_interval) {
   std::vector<double> before(guards.size());
   const GearState start = segment.state_at(t0);
-  for (std::size_t i = 0; i < guards.size(); ++i) before[i] = guards[i].form(start);
+  for (std::size_t i = 0; i < guards.size(); ++i) before[i] = guards[i].form.at(start, t0);
   double a = t0;
   for (;;) {
     const double b = segment.advance();
@@ -47,9 +47,9 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
     const GearState end = segment.state_at(b);
     Crossing first{b, std::nullopt};
     for (std::size_t i = 0; i < guards.size(); ++i) {
-      const double value = guards[i].form(end);
+      const double value = guards[i].form.at(end, b);
       if (value < 0) {
-        auto f = [&](double t) { return guards[i].form(segment.state_at(t)); };
+        auto f = [&](double t) { return guards[i].form.at(segment.state_at(t), t); };
         const double flo = a == t0 ? before[i] : std::max(before[i], 0.0);
         const double t = crossing_time(f, a, b, flo, value);
         if (t < first.time || !first.kind) first = {t, guards[i].kind};

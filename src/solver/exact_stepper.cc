@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
@@ -36,7 +37,8 @@ class ExactSegment : public Segment {
     end_ = t0;
     step_ = oscillator_.sampling_step();
     const double vertex = oscillator_.vertex();
-    if (!d.coupled && vertex > 0 && t0 + vertex < horizon) vertex_ = t0 + vertex;
+    if (!d.coupled && vertex > 0 && t0 + vertex < horizon) turns_[turn_count_++] = t0 + vertex;
+    if (!d.coupled && weight_ > 0) free_flight_turns(guards);
     if (step_ > 0) {
       for (const Guard& g : guards) shapes_.push_back(shape(g.form));
       wave_ = wave(0);
@@ -44,9 +46,10 @@ class ExactSegment : public Segment {
   }
 
   double advance() override {
-    if (step_ <= 0) {  // free flight: monotone guards on both sides of the vertex
-      end_ = end_ < vertex_ ? vertex_ : horizon_;
-      return end_;
+    if (step_ <= 0) {  // free flight: monotone guards between their turning points
+      for (int i = 0; i < turn_count_; ++i)
+        if (turns_[i] > end_) return end_ = turns_[i];
+      return end_ = horizon_;
     }
     const double a = end_;
     const double b = std::min(horizon_, a + step_);
@@ -155,6 +158,23 @@ class ExactSegment : public Segment {
 
   double kappa() const { return oscillator_.kappa(); }
 
+  /// In free flight each guard is a parabola in τ (the twist is one, the speeds
+  /// are affine); its vertex, where g' = l1 + p·u' + q·f = 0, splits it into
+  /// monotone pieces. The contact guards turn with the twist; the capped
+  /// law's parted phase watches c·u + d·u̇, which turns elsewhere.
+  void free_flight_turns(const std::vector<Guard>& guards) {
+    const double f = force_, v0 = s0_.omega_p - s0_.omega_s;
+    for (const Guard& g : guards) {
+      // The others are monotone on both sides of the twist's vertex.
+      if (g.kind != GuardKind::flanks_press) continue;
+      const Shape s = shape(g.form);
+      if (s.p * f == 0) continue;
+      const double tau = -(s.l1 + s.p * v0 + s.q * f) / (s.p * f);
+      if (tau > 0 && t0_ + tau < horizon_ && turn_count_ < max_turns) turns_[turn_count_++] = t0_ + tau;
+    }
+    std::sort(turns_.begin(), turns_.begin() + turn_count_);
+  }
+
   /// The closed form at τ; the last one is kept, since the event locator asks
   /// for the state at each interval end right after advance() computed it.
   const ForcedOscillator::Values& values(double tau) const {
@@ -185,15 +205,18 @@ class ExactSegment : public Segment {
     const double rest = oscillator_.equilibrium();
     g.l0 = f.omega_p * s0_.omega_p + f.omega_s * s0_.omega_s + f.constant +
            f.dphi * (d_.offset + rest) + j * v0;
-    g.l1 = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s + j * force_;
+    g.l1 = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s + j * force_ +
+           f.time;
+    g.l0 += f.time * t0_;  // a guard that moves with a ramping drive
     g.p = f.dphi;
     g.q = -j;
     // The sizes of the terms that cancel in l0 and l1: their rounding.
     g.l0_size = std::abs(f.omega_p * s0_.omega_p) + std::abs(f.omega_s * s0_.omega_s) +
                 std::abs(f.constant) + std::abs(f.dphi * d_.offset) + std::abs(f.dphi * rest) +
                 std::abs(j * v0);
+    g.l0_size += std::abs(f.time * t0_);
     g.l1_size = std::abs(f.omega_p * d_.inv_p * d_.force_p) +
-                std::abs(f.omega_s * d_.inv_s * d_.force_s) + std::abs(j * force_);
+                std::abs(f.omega_s * d_.inv_s * d_.force_s) + std::abs(j * force_) + std::abs(f.time);
     return g;
   }
 
@@ -259,7 +282,11 @@ class ExactSegment : public Segment {
   ForcedOscillator oscillator_;
   double step_ = 0;
   double end_;
-  double vertex_ = -1;
+  // Free flight: where a guard may turn, in order; no heap per segment (the
+  // twist's vertex and the parted phase's one guard).
+  static constexpr int max_turns = 4;
+  std::array<double, max_turns> turns_{};
+  int turn_count_ = 0;
   std::vector<Shape> shapes_;
   Wave wave_;  ///< at end_
   mutable double cached_tau_ = std::numeric_limits<double>::quiet_NaN();
@@ -270,8 +297,8 @@ class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
                                  double t0, double horizon) override {
-    return std::make_unique<ExactSegment>(model.dynamics(mode), model.guards(mode), state, t0,
-                                          horizon);
+    return std::make_unique<ExactSegment>(model.dynamics(mode, t0), model.guards(mode, t0), state,
+                                          t0, horizon);
   }
 };
 

@@ -244,14 +244,19 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
   EventBudget budget(spec);
   StepBudget steps(spec);
   while (t < spec.duration) {
-    auto segment = stepper.start(model, mode, state, t, spec.duration);
-    const Crossing crossing = locate_first_crossing(
-        *segment, model.guards(mode), t, [&](double a, double b) {
+    // A segment ends at the drive's next breakpoint too: the forcing changes there.
+    const double breakpoint = model.parameters().next_breakpoint(t);
+    const double horizon = std::min(spec.duration, breakpoint);
+    auto segment = stepper.start(model, mode, state, t, horizon);
+    Crossing crossing = locate_first_crossing(
+        *segment, model.guards(mode, t), t, [&](double a, double b) {
           steps.count(b, model, mode);
           outputs.interval(a, b, mode, *segment);
           outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
         });
     GearState before = segment->state_at(crossing.time);
+    if (!crossing.kind && crossing.time == breakpoint && breakpoint < spec.duration)
+      crossing.kind = GuardKind::drive_breakpoint;
     if (!crossing.kind) {
       if (crossing.time < spec.duration) unresolvable(model, mode, crossing.time, spec);
       state = before;
@@ -260,7 +265,7 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     t = crossing.time;
     state = before;
     const Mode previous = mode;
-    mode = model.cross(mode, *crossing.kind, state);
+    mode = model.cross(mode, *crossing.kind, state, t);
     const EventRecord record{t, *crossing.kind, before, state, previous, mode};
     budget.count(record, model);
     outputs.event(record);
@@ -302,6 +307,22 @@ std::string undersampling_warning(const GearParameters& p, const RunSpec& spec,
       period / RunSpec::samples_per_period);
 }
 
+std::string adaptive_reason(const GearParameters& p) {
+  std::string why;
+  auto add = [&](bool used, const char* what) {
+    if (used) why += (why.empty() ? "" : ", ") + std::string(what);
+  };
+  add(!p.drive_profile.piecewise_constant(), "a drive that ramps");
+  add(p.motor_slope > 0, "the motor line");
+  add(p.viscous_primary > 0 || p.viscous_secondary > 0, "viscous friction");
+  add(p.stribeck(), "Stribeck friction");
+  return why.empty() ? why : "the exact solver integrates constant forcing only; this scene has " + why;
+}
+
+std::unique_ptr<Stepper> make_reference_stepper(const GearParameters& p, double tolerance) {
+  return p.forcing_constant_in_modes() ? make_exact_stepper() : make_adaptive_stepper(tolerance);
+}
+
 SolverKind parse_solver(const std::string& name) {
   if (name == "exact") return SolverKind::exact;
   if (name == "adaptive") return SolverKind::adaptive;
@@ -310,9 +331,16 @@ SolverKind parse_solver(const std::string& name) {
 
 Trajectory simulate(const GearModel& model, const GearState& initial, const RunSpec& spec,
                     SolverKind solver, double tolerance) {
+  Trajectory trajectory;
+  if (solver == SolverKind::exact && !model.parameters().forcing_constant_in_modes()) {
+    // A ramp, the motor line or viscous friction: the modes are no longer
+    // integrated in closed form; the same guards and event location run on
+    // the adaptive solver, and the output says so.
+    solver = SolverKind::adaptive;
+    trajectory.solver_note = adaptive_reason(model.parameters());
+  }
   auto stepper = solver == SolverKind::exact ? make_exact_stepper() : make_adaptive_stepper(tolerance);
   check_output_grid(spec);  // before the samples are reserved
-  Trajectory trajectory;
   trajectory.samples.reserve(static_cast<std::size_t>(spec.rows()));
   trajectory.closed_form = solver == SolverKind::exact;
   // Event samples fill what the row limit leaves after the grid.

@@ -68,7 +68,16 @@ void integrate(const GearModel& model, Stepper& stepper, GearState initial, cons
 enum class SolverKind { exact, adaptive };
 SolverKind parse_solver(const std::string& name);
 
-/// The one-call entry point: integrate with the named solver and record.
+/// Why a scene needs the adaptive solver (empty when the exact one can run).
+std::string adaptive_reason(const GearParameters& p);
+
+/// The reference solver for these parameters: the exact one when every mode
+/// is linear with constant forcing, else the adaptive one at `tolerance`.
+std::unique_ptr<Stepper> make_reference_stepper(const GearParameters& p, double tolerance = 1e-10);
+
+/// The one-call entry point: integrate with the named solver and record; the
+/// exact solver falls back to the adaptive one (saying why in solver_note)
+/// for a scene whose modes are not linear with constant forcing.
 Trajectory simulate(const GearModel& model, const GearState& initial, const RunSpec& spec,
                     SolverKind solver = SolverKind::exact, double tolerance = 1e-10);
 

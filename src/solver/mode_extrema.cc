@@ -52,7 +52,7 @@ void ModeExtrema::walk(double a, double b) {
 
 ModeExtrema::Point ModeExtrema::at(double t) const {
   Point p{t, segment_.state_at(t), {}};
-  p.rate = model_.derivative(mode_, p.state);
+  p.rate = model_.derivative(mode_, p.state, t);
   return p;
 }
 

@@ -26,6 +26,7 @@ std::string restitution_text(const ContactRecord& c) {
 std::string summary_text(const Trajectory& t, std::size_t most_contacts) {
   std::string text = fmt::format("{} contacts{}\n", t.contacts.size(),
                                  t.closed_form ? " (closed form)" : " (adaptive solver's dense output)");
+  if (!t.solver_note.empty()) text += "solver: adaptive (" + t.solver_note + ")\n";
   if (!t.contacts.empty())
     text += "  impact t (s)   side  before p, s (rad/s)     after p, s (rad/s)      "
             "restitution   peak M0 (N·m) at t (s)       peak |dphi| (rad) at t (s)\n";
@@ -64,7 +65,7 @@ std::string summary_json(const Trajectory& t) {
                         {"peak_dphi", to_json(c.twist)}});
   nlohmann::json peaks;
   for (Signal s : all_signals) peaks[to_string(s)] = to_json(peak(t.peaks, s));
-  const nlohmann::json j = {{"closed_form", t.closed_form}, {"contacts", contacts}, {"peaks", peaks}};
+  const nlohmann::json j = {{"closed_form", t.closed_form}, {"solver", t.closed_form ? "exact" : "adaptive"}, {"contacts", contacts}, {"peaks", peaks}};
   return j.dump(2) + "\n";
 }
 

@@ -69,6 +69,9 @@ struct Trajectory {
   /// True when contacts and peaks come from the closed form (exact solver);
   /// the adaptive solver fills them from its dense output.
   bool closed_form = false;
+  /// Why the adaptive solver ran when the exact one was asked for (a mode
+  /// that is not linear with constant forcing); empty otherwise.
+  std::string solver_note;
 
   /// The grid samples and the event samples merged in time order (an event
   /// sample after a grid sample at the same time).

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <numeric>
 
+#include "model/capped_restitution.h"
 #include "model/restitution.h"
 
 namespace gearpatch::verify {
@@ -31,7 +32,9 @@ void damping_switch(const VerifyResult& r, const Patch& patch, const GearParamet
                     std::vector<std::string>& out) {
   if (patch.delta1 <= 0 || gear.damping <= 0) return;
   const auto& c = r.comparison;
-  const double k = restitution_for_damping(gear.damping, gear.stiffness, gear.effective_inertia());
+  const double k = gear.capped_contact  // each law has its own k for the same d
+                       ? capped_restitution_for_damping(gear.damping, gear.stiffness, gear.effective_inertia())
+                       : restitution_for_damping(gear.damping, gear.stiffness, gear.effective_inertia());
   double worst = 0, furthest = k;
   for (double measured : c.restitution)
     if (std::abs(measured - k) > worst) worst = std::abs(measured - k), furthest = measured;

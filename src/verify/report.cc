@@ -8,6 +8,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
+#include "solver/integrate.h"
 
 namespace gearpatch::verify {
 
@@ -70,6 +71,8 @@ std::string to_table(const VerifyResult& r) {
   for (const auto& o : r.overloads)
     t += fmt::format("OVERLOAD {} = {:.4g} MU at t = {:.6g} s\n", o.node, o.value, o.t);
   for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
+  if (const std::string why = adaptive_reason(r.gear); !why.empty())
+    t += "reference: adaptive solver (" + why + ")\n";
   t += fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds);
   if (r.retry)
     t += fmt::format("ngspice retry: the first run aborted ({}); ran once more with {}\n", r.retry->first_failure,
