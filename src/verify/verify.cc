@@ -109,7 +109,8 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   patch_options.autoscale = options.autoscale;
   const Patch patch = make_patch(input, patch_options, run);
   r.warnings = patch.warnings;
-  const circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
+  circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
+  if (options.alter_circuit) options.alter_circuit(circuit);
   r.beta = circuit.beta;
   r.autoscaled = circuit.autoscaled;
   if (options.deck_header) check_deck_header(*options.deck_header, circuit);
