@@ -31,6 +31,7 @@ int run_merge(const std::vector<std::string>& args);
 int run_figures(const std::vector<std::string>& args);
 int run_patch(const std::vector<std::string>& args);
 int run_monte_carlo(const std::vector<std::string>& args);
+int run_budget(const std::vector<std::string>& args);
 
 /// Where a Monte Carlo's summary goes: the table ("-" stdout, "" stderr), --json, --plot ("" none).
 struct MonteCarloOutputPaths {

@@ -1,4 +1,7 @@
+#include <algorithm>
 #include <cstdio>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <fmt/format.h>
 
 #include "circuit/quality.h"
@@ -11,6 +14,9 @@
 #include "common/process.h"
 #include "scene/scene.h"
 #include "spice/deck_reader.h"
+#include "runs/pool.h"
+#include "tolerance/error_budget.h"
+#include "tolerance/variants.h"
 #include "verify/report.h"
 #include "verify/verify.h"
 
@@ -48,6 +54,25 @@ void stage_plot(OutputSet& outputs, const verify::VerifyResult& result, const st
   }
 }
 
+/// Whether every signal stayed within its predicted budget.
+bool met_budget(const verify::VerifyResult& r, const tolerance::ErrorBudget& b) {
+  for (const auto& [signal, error] : tolerance::signal_errors(r))
+    if (error > b.predicted.at(signal) * (1 + 1e-9)) return false;
+  return true;
+}
+
+std::string budget_verdict(const verify::VerifyResult& r, const tolerance::ErrorBudget& b) {
+  std::string t = "\n" + tolerance::to_table(b);
+  std::string over;
+  for (const auto& [signal, error] : tolerance::signal_errors(r))
+    if (error > b.predicted.at(signal) * (1 + 1e-9))
+      over += fmt::format("{}{} {:.3g} % > {:.3g} %", over.empty() ? "" : ", ", to_string(signal), 100 * error,
+                          100 * b.predicted.at(signal));
+  t += over.empty() ? fmt::format("the circuit met its error budget (judged at {:g} %)\n", 100 * r.tolerance)
+                    : fmt::format("the circuit did NOT meet its error budget: {}\n", over);
+  return t;
+}
+
 }  // namespace
 
 int run_verify(const std::vector<std::string>& args) {
@@ -68,6 +93,8 @@ int run_verify(const std::vector<std::string>& args) {
        "holds to it; a deck without that header is read back with the options' level and scaling. "
        "ngspice runs it as written, so a deck with .control blocks (which can run shell commands), "
        "*# commands or .include/.lib is refused unless --allow-control")
+      ("no-budget", "at the hardware level without --tolerance: judge at the hardware default (2%) instead of "
+       "the scene's predicted error budget (see gearpatch budget), and skip its runs")
       ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
        "a plot that cannot be made is a warning, the verdict stands")
@@ -115,12 +142,26 @@ int run_verify(const std::vector<std::string>& args) {
   const Scene scene = load_scene(file, chosen_machine(vm));
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
+  // At the hardware level the machine's own tolerances set the bar, unless the user gave one.
+  std::optional<tolerance::ErrorBudget> budget;
+  if (o.level == circuit::Level::hardware && !o.tolerance && !o.deck_text && !vm.count("no-budget")) {
+    budget = tolerance::error_budget(scene, o, runs::core_count());
+    o.tolerance = std::max(verify::default_tolerance(o.level), budget->worst() * (1 + 1e-9));
+  }
   auto simulator = spice::make_batch_ngspice();
   const verify::VerifyResult result = verify::verify(scene, o, *simulator);
-  const std::string table = verify::to_table(result);
+  std::string table = verify::to_table(result);
+  std::string json = verify::to_json(result);
+  if (budget) {
+    table += budget_verdict(result, *budget);
+    nlohmann::json j = nlohmann::json::parse(json);
+    j["budget"] = tolerance::to_json(*budget);
+    j["met_budget"] = met_budget(result, *budget);
+    json = j.dump(2) + "\n";
+  }
   std::vector<std::string> warnings;
   if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", verify::to_json(result));
+  if (outputs.has("--json")) outputs.stage("--json", json);
   if (outputs.has("--plot")) stage_plot(outputs, result, plot_as, warnings);
   outputs.commit();
   if (report_to.empty()) std::fputs(table.c_str(), stderr);
