@@ -15,7 +15,9 @@
 #include "scene/scene_inputs.h"
 #include "support.h"
 #include "tolerance/component_draw.h"
+#include "tolerance/error_budget.h"
 #include "tolerance/monte_carlo_summary.h"
+#include "tolerance/variants.h"
 
 namespace fs = std::filesystem;
 using namespace gearpatch;
@@ -103,4 +105,53 @@ TEST_CASE("a Monte Carlo draw that cannot run is counted and named", "[tolerance
   const nlohmann::json j = read_json(dir / "mc.json");
   CHECK(j.at("completed") == 0);
   CHECK(j.at("failed").size() == 2);
+}
+
+namespace {
+
+/// The scene's worst-budget signal error on the profile's own deck with the
+/// named component's offset removed (none: the deck as the profile gives it).
+double ablated_error(const Scene& s, const verify::VerifyOptions& o, const tolerance::ErrorBudget& b,
+                     const std::string& component) {
+  tolerance::Variant v{"without " + component, [&](verify::VerifyOptions& options) {
+                         if (component.empty()) return;
+                         tolerance::also_alter(options, [&](circuit::Circuit& c) {
+                           c.machine.amplifier.offsets_by_name[component.substr(7)] = 0;
+                         });
+                       }};
+  const auto runs = tolerance::run_variants(s, o, {v}, 1, "ablation");
+  REQUIRE(runs[0].result);
+  return tolerance::signal_errors(*runs[0].result).at(b.worst_signal);
+}
+
+}  // namespace
+
+TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[tolerance]") {
+  const std::string name = GENERATE("bild5b", "bild6a", "bild6c");
+  CAPTURE(name);
+  const Scene s = load_scene(scene(name), "the-analog-thing");
+  verify::VerifyOptions o;
+  o.level = circuit::Level::hardware;
+  o.autoscale = true;
+  const tolerance::ErrorBudget b = tolerance::error_budget(s, o, 2);
+  REQUIRE(b.failed.empty());
+  REQUIRE(b.shares.size() > 2);
+  // The second-heaviest offset in the worst signal.
+  std::string second;
+  double weight = -1;
+  for (const tolerance::ComponentShare& share : b.shares)
+    if (share.component != b.dominant && share.component.rfind("offset ", 0) == 0 &&
+        share.error.at(b.worst_signal) > weight)
+      weight = share.error.at(b.worst_signal), second = share.component;
+  REQUIRE(b.dominant.rfind("offset ", 0) == 0);
+  CAPTURE(b.dominant, second);
+  // Removed from the deck as the profile gives it (every offset 1 mV, its
+  // sign by the amplifier's name), the dominant offset changes the error most.
+  const double as_is = ablated_error(s, o, b, "");
+  const double without_dominant = ablated_error(s, o, b, b.dominant);
+  const double without_second = ablated_error(s, o, b, second);
+  CAPTURE(as_is, without_dominant, without_second);
+  CHECK(std::abs(without_dominant - as_is) > std::abs(without_second - as_is));
+  // The prediction holds the profile's own deck.
+  CHECK(as_is <= b.predicted.at(b.worst_signal));
 }
