@@ -135,7 +135,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
   judge(r);
   if (!r.passed)
-    r.diagnosis = diagnose(r, patch, circuit, model.parameters(), scene.duration, scene.machine);
+    r.diagnosis = diagnose(r, patch);
   return r;
 }
 
