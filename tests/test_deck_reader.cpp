@@ -121,7 +121,7 @@ TEST_CASE("every committed deck says in its header how it was made", "[spice]") 
       const auto header = spice::read_deck_header(read_file(testing::source_path(file)), file);
       REQUIRE(header);
       CHECK(header->level == level);
-      CHECK(header->scaling == "paper");
+      CHECK(header->scaling == "solved");
       CHECK(header->quality == "normal");
     }
 }
@@ -143,7 +143,7 @@ TEST_CASE("verify --deck holds to the deck's header and says when a deck has non
   CHECK_THAT(output, Catch::Contains("level hardware") && Catch::Contains("from its gearpatch header"));
   auto report = nlohmann::json::parse(read_file(json_file));
   CHECK(report["level"] == "hardware");
-  CHECK(report["scaling"] == "autoscale");
+  CHECK(report["scaling"] == "solved-autoscale");
   CHECK(report["deck_scaling"] == "header");
   // An option that contradicts the deck is refused before ngspice runs.
   CHECK(testing::run_command(verify + " --level ideal", output) == 2);
@@ -153,7 +153,10 @@ TEST_CASE("verify --deck holds to the deck's header and says when a deck has non
   CHECK_THAT(output, Catch::Contains("was written with quality=normal"));
   // A deck with the paper's scaling overloads on hardware: the advice is a new deck, not an option it refuses.
   const std::string paper_file = (dir / "gearpatch-deck-header-paper.cir").string();
-  REQUIRE(testing::run_command(binary + " netlist " + scene + " --level hardware -o " + paper_file, output) == 0);
+  REQUIRE(testing::run_command(binary + " netlist " + scene + " --level hardware --scaling paper -o " + paper_file,
+                               output) == 0);
+  CHECK(testing::run_command(binary + " verify " + scene + " --deck " + paper_file + " --scaling solved", output) == 2);
+  CHECK_THAT(output, Catch::Contains("was written with scaling=paper"));
   CHECK(testing::run_command(binary + " verify " + scene + " --deck " + paper_file, output) == 1);
   CHECK_THAT(output, Catch::Contains("overload") &&
                          Catch::Contains("write the deck again with gearpatch netlist --autoscale"));

@@ -93,7 +93,11 @@ TEST_CASE("a scene names its machine; --machine overrides it and machine.* keys 
   // the scaling works for the machine's k0: integrator coefficients stay within the weights
   const Patch p = make_patch(on_that, quick());
   CHECK(p.k0 == 1000);
-  CHECK(p.beta == Approx(1e-3));
+  // only β·k0 enters the scaling: the same scene at k0 = 1 runs 1000 times slower
+  Scene at_one = on_that;
+  at_one.machine.integrator_constant = 1;
+  at_one.machine.integrator_constants.clear();
+  CHECK(p.beta == Approx(make_patch(at_one, quick()).beta / 1000).epsilon(1e-6));
   for (const auto& pot : p.potentiometers) CHECK(pot.setting <= 1.0);
   try {
     parse_scene(gear + "[machine]\nprofile = the-analog-thin\n", "s.ini");

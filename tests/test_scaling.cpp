@@ -25,6 +25,18 @@ using namespace gearpatch;
 
 namespace {
 
+/// The tests of this file up to the solved scaling's own check the paper's
+/// recipe (Table 1 by hand), which --scaling paper keeps.
+PatchOptions paper_options() {
+  PatchOptions o;
+  o.method = ScalingMethod::paper;
+  return o;
+}
+
+}  // namespace
+
+namespace {
+
 // Every term of Table 1 is present: drive, load, both bearings, tooth
 // friction, damping, backlash and all three initial values; β is given.
 const char* const hand_scene = R"(
@@ -77,7 +89,7 @@ int run_binary(const std::string& arguments) {
 
 TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
   const Scene scene = parse_scene(hand_scene, "hand.ini");
-  PatchOptions options;
+  PatchOptions options = paper_options();
   options.check_peaks = false;
   const Patch patch = make_patch(scene, options);
 
@@ -162,7 +174,7 @@ TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
 }
 
 TEST_CASE("Without drive and friction the maxima are the paper's (6.11), (6.12)", "[scaling]") {
-  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), {});
+  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), paper_options());
   // Δφ̇m = Δφ̇0 = 1; Δφ'm = Δφ̇m·sqrt(Θ/c) = sqrt(0.5/100); M0m = c·Δφ'm (d = 0).
   CHECK(patch.maxima.relative_speed == 1);
   CHECK(patch.maxima.contact_twist == Approx(std::sqrt(0.005)).margin(1e-15));
@@ -185,7 +197,7 @@ TEST_CASE("Every example scene: a-priori peaks within scale, autoscaled in [50 %
   for (const auto& path : example_scenes()) {
     INFO(path);
     const Scene scene = load_scene(path);
-    const Patch patch = make_patch(scene, {});
+    const Patch patch = make_patch(scene, paper_options());
     REQUIRE(!patch.peaks.empty());
     for (const auto* peaks : {&patch.peaks, &patch.bounded_peaks})
       for (const auto& [signal, fraction] : *peaks) {
@@ -195,7 +207,7 @@ TEST_CASE("Every example scene: a-priori peaks within scale, autoscaled in [50 %
           reported = reported || w.rfind(signal + " would overload", 0) == 0;
         CHECK((fraction <= 1 + 1e-9 || reported));
       }
-    PatchOptions autoscale;
+    PatchOptions autoscale = paper_options();
     autoscale.autoscale = true;
     const Patch scaled = make_patch(scene, autoscale);
     for (const auto& [signal, fraction] : scaled.peaks) {
@@ -211,7 +223,7 @@ TEST_CASE("Every example scene: a-priori peaks within scale, autoscaled in [50 %
 TEST_CASE("An overload is reported with the signal and by how much", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.maxima["contact_twist"] = 0.05;  // the true peak is about 0.052 rad
-  const Patch patch = make_patch(scene, {});
+  const Patch patch = make_patch(scene, paper_options());
   CHECK(patch.peaks.at("X'") > 1);
   bool found = false;
   for (const auto& w : patch.warnings)
@@ -223,7 +235,7 @@ TEST_CASE("An overload is reported with the signal and by how much", "[scaling]"
 TEST_CASE("Every setting is in [0, 1] and the loaded setting inverts the loading", "[scaling]") {
   for (const auto& path : example_scenes()) {
     for (bool autoscale : {false, true}) {
-      PatchOptions o;
+      PatchOptions o = paper_options();
       o.autoscale = autoscale;
       const Scene scene = load_scene(path);
       const Patch patch = make_patch(scene, o);
@@ -282,9 +294,9 @@ restitution = 1
 [run]
 duration = 1
 )", "still.ini");
-  CHECK_THROWS_WITH(make_patch(still, {}), Catch::Contains("maxima.relative_speed"));
+  CHECK_THROWS_WITH(make_patch(still, paper_options()), Catch::Contains("maxima.relative_speed"));
   // β so small that alpha3 = 7.07/β exceeds every weight.
-  PatchOptions o;
+  PatchOptions o = paper_options();
   o.beta = 0.01;
   try {
     make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), o);
@@ -298,7 +310,7 @@ duration = 1
   // alpha11 = Δφm/Δφ'm beyond 10: a stiff coupling against a wide play.
   Scene stiff = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini");
   stiff.stiffness = 1e6;
-  CHECK_THROWS_WITH(make_patch(stiff, {}), Catch::Contains("alpha11") && Catch::Contains("maxima.contact_twist"));
+  CHECK_THROWS_WITH(make_patch(stiff, paper_options()), Catch::Contains("alpha11") && Catch::Contains("maxima.contact_twist"));
 }
 
 TEST_CASE("a setting that is not finite is an internal error naming it", "[scaling]") {
@@ -306,7 +318,7 @@ TEST_CASE("a setting that is not finite is an internal error naming it", "[scali
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.machine.potentiometer_resistance = 1e-320;
   try {
-    make_patch(scene, {});
+    make_patch(scene, paper_options());
     FAIL("a NaN setting passed");
   } catch (const Error& e) {
     CHECK(e.kind() == Error::Kind::internal);
@@ -317,7 +329,7 @@ TEST_CASE("a setting that is not finite is an internal error naming it", "[scali
 TEST_CASE("settings JSON replaces text that is not UTF-8 instead of failing", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.name = "gear\xE4";  // a file stem in Latin-1
-  PatchOptions o;
+  PatchOptions o = paper_options();
   o.check_peaks = false;
   std::string json;
   REQUIRE_NOTHROW(json = to_json(make_patch(scene, o)));
@@ -328,7 +340,7 @@ TEST_CASE("Automatic β: coefficients, and the machine's speed for a stiff coupl
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.stiffness = 1e6;
   scene.backlash = 0;  // no dead zone: alpha11 = 1, no damping switch
-  Patch patch = make_patch(scene, {});
+  Patch patch = make_patch(scene, paper_options());
   // Without backlash Δφm = Δφ'm = Δφ̇m·sqrt(Θ/c), so alpha10 = sqrt(c/Θ)/β
   // = 1414/β <= 10: β >= 141 → 200.
   CHECK(patch.beta == 200);
@@ -346,13 +358,13 @@ TEST_CASE("Automatic β: coefficients, and the machine's speed for a stiff coupl
   // must stay <= 100·k0 rad/s of machine time: β >= 14.1 → 20.
   scene.backlash = 0.01;
   scene.machine.weights = {1, 10, 100};
-  patch = make_patch(scene, {});
+  patch = make_patch(scene, paper_options());
   CHECK(patch.beta == 20);
   CHECK(patch.beta_reason.find("oscillation") != std::string::npos);
 }
 
 TEST_CASE("Tooth friction moves η from alpha4 into alpha_tooth; self-locking adds alpha_lock", "[scaling]") {
-  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild6c.ini"), {});
+  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild6c.ini"), paper_options());
   const Maxima& m = patch.maxima;
   const double scale = 1.0 * patch.beta * m.speed_secondary;  // Θs·β·φ̇sm
   CHECK(patch.find(Setting::alpha4)->coefficient == Approx(m.torque / scale).epsilon(1e-14));
@@ -376,7 +388,7 @@ TEST_CASE("Tooth friction moves η from alpha4 into alpha_tooth; self-locking ad
 TEST_CASE("The machine's integrator constant divides the integrator coefficients", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini");
   scene.machine.integrator_constant = 10;
-  const Patch patch = make_patch(scene, {});
+  const Patch patch = make_patch(scene, paper_options());
   // alpha3 = 7.07/(β·k0) <= 10: β >= 0.0707 → 0.1, and alpha3 = 7.07/(0.1·10) = 7.07.
   CHECK(patch.beta == Approx(0.1));
   CHECK(patch.k0 == 10);
@@ -397,7 +409,7 @@ TEST_CASE("round_up_125 rounds to 1, 2, 5 × 10^n", "[scaling]") {
 }
 
 TEST_CASE("settings JSON has the documented keys", "[scaling]") {
-  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/driven.ini"), {});
+  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/driven.ini"), paper_options());
   const auto j = nlohmann::json::parse(to_json(patch));
   for (const char* key : {"beta", "k0", "unit_volts", "maxima", "potentiometers", "dead_zone",
                           "unused", "peaks", "delta1", "delta2"})
@@ -440,7 +452,7 @@ TEST_CASE("every numeric option must be finite and in range", "[scaling][cli]") 
 TEST_CASE("gearpatch settings end to end", "[scaling]") {
   const std::string scene = std::string(GEARPATCH_SOURCE_DIR) + "/scenes/bild5b.ini";
   CHECK(run_binary("settings " + scene) == 0);
-  CHECK(run_binary("settings " + scene + " --beta 0.01") == 2);
+  CHECK(run_binary("settings " + scene + " --beta 0.01 --scaling paper") == 2);
   CHECK(run_binary("settings " + scene + " --beta 0") == 2);
   CHECK(run_binary("settings") == 2);
   const auto zero = std::filesystem::temp_directory_path() / "gearpatch_settings_zero.ini";
@@ -465,7 +477,7 @@ TEST_CASE("gearpatch settings end to end", "[scaling]") {
 TEST_CASE("a scaling refusal names the scene file and the line of the key to change", "[scaling]") {
   // alpha11 beyond every weight: the line of the backlash to make smaller.
   const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
-  CHECK_THROWS_WITH(make_patch(load_scene(wide)), Catch::StartsWith(wide + ":13: alpha11 = "));
+  CHECK_THROWS_WITH(make_patch(load_scene(wide), paper_options()), Catch::StartsWith(wide + ":13: alpha11 = "));
   // A twist maximum below the half backlash: the line of the override.
   const Scene bad = parse_scene(testing::gear_scene("restitution = 0.5\nbacklash = 1",
                                                     "[initial]\nspeed_primary = 1\n[maxima]\ntwist = 0.1"),

@@ -132,6 +132,32 @@ TEST_CASE("with --verify every point of the k sweep passes at the ideal level (n
   }
 }
 
+TEST_CASE("--machine patches every point on that machine, also in the jobs of a run folder", "[sweep]") {
+  testing::TempFolder dir("sweep-machine");
+  std::string output;
+  const std::string sweep = kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5,1 --verify";
+  REQUIRE(testing::run_command(sweep + " --json " + dir / "generic.json", output) == 0);
+  REQUIRE(testing::run_command(sweep + " --machine the-analog-thing --json " + dir / "that.json", output) == 0);
+  const nlohmann::json generic = read_json(dir / "generic.json"), that = read_json(dir / "that.json");
+  REQUIRE(that.at("points").size() == 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& on_that = that.at("points")[i].at("verify");
+    CHECK(on_that.at("machine") == "the-analog-thing");
+    CHECK(on_that.at("passed") == true);
+    // k0 = 1000 /s against generic's 1 /s: only β·k0 enters the scaling
+    CHECK(on_that.at("beta").get<double>() * 1000 ==
+          Approx(generic.at("points")[i].at("verify").at("beta").get<double>()).epsilon(1e-6));
+  }
+  REQUIRE(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5 --machine classic" +
+                                   " --job-list " + dir / "run",
+                               output) == 0);
+  CHECK_THAT(read_file(dir / "run/jobs.txt"), Catch::Contains("--machine classic"));
+  CHECK(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5 --machine no-such" +
+                                 " --json " + dir / "x.json",
+                             output) == 2);
+  CHECK(!fs::exists(dir / "x.json"));
+}
+
 TEST_CASE("the GNU Parallel route gives the same merged result as the local run", "[sweep]") {
   testing::TempFolder dir("sweep-parallel");
   std::string output;

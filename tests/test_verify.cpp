@@ -30,6 +30,21 @@ std::string temp_file(const std::string& name) {
   return (fs::temp_directory_path() / ("gearpatch-verify-" + name)).string();
 }
 
+// The scripted-simulator tests below check verify's own mechanics against a
+// known deck, so they use the paper's recipe, whose numbers do not move when
+// the solved scaling's objective is refined.
+verify::VerifyOptions paper() {
+  verify::VerifyOptions o;
+  o.paper_scaling = true;
+  return o;
+}
+
+Patch paper_patch(const Scene& scene) {
+  PatchOptions o;
+  o.method = ScalingMethod::paper;
+  return make_patch(scene, o);
+}
+
 std::string generated_deck(const Scene& scene, circuit::Level level) {
   PatchOptions o;
   o.check_peaks = false;
@@ -39,7 +54,7 @@ std::string generated_deck(const Scene& scene, circuit::Level level) {
 
 /// Machine voltages a perfect circuit would give: the reference, scaled.
 spice::Vectors perfect_circuit(const Scene& scene, const verify::VerifyResult& seen) {
-  const Patch patch = make_patch(scene);
+  const Patch patch = paper_patch(scene);
   const double u = scene.machine.unit_volts;
   spice::Vectors v;
   for (const Sample& s : seen.reference.samples) {
@@ -126,7 +141,10 @@ TEST_CASE("verify fails when one potentiometer is off by 20 %", "[verify][ngspic
 TEST_CASE("verify names the scene file and line of a scaling refusal, before any simulator run", "[verify]") {
   const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
   spice::ScriptedSimulator never;
-  CHECK_THROWS_WITH(verify::verify(load_scene(wide), {}, never), Catch::StartsWith(wide + ":13: alpha11 = "));
+  CHECK_THROWS_WITH(verify::verify(load_scene(wide), paper(), never), Catch::StartsWith(wide + ":13: alpha11 = "));
+  const std::string stiff = testing::source_path("scenes/extremes/stiff.ini");  // beyond the solved scaling too
+  CHECK_THROWS_WITH(verify::verify(load_scene(stiff), {}, never),
+                    Catch::StartsWith(stiff + ":13: no scaling fits") && Catch::Contains("alpha11"));
   CHECK(never.decks().empty());
 }
 
@@ -137,7 +155,7 @@ TEST_CASE("verify keeps the patch's warnings and reports them", "[verify]") {
   flat.data["time"] = {0, scene.duration * 10};
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
   dead.then_return(flat);
-  const verify::VerifyResult r = verify::verify(scene, {}, dead);
+  const verify::VerifyResult r = verify::verify(scene, paper(), dead);
   REQUIRE(r.warnings.size() == 2);
   CHECK_THAT(r.warnings[0], Catch::Contains("alpha2 = 0.02 at β = 10 is below 0.1"));
   CHECK_THAT(verify::to_table(r), Catch::Contains("warning (settings): " + r.warnings[1]));
@@ -151,7 +169,7 @@ TEST_CASE("the scripted simulator stands in for ngspice", "[verify]") {
   first.then_throw(Error("placeholder", Error::Kind::simulator));
   verify::VerifyResult seen;
   // The reference is computed after the run; get its grid from a run that fails first.
-  CHECK_THROWS_AS(verify::verify(scene, {}, first), Error);
+  CHECK_THROWS_AS(verify::verify(scene, paper(), first), Error);
   REQUIRE(first.decks().size() == 1);
   CHECK_THAT(first.decks().front(), Catch::Contains(".tran"));
 
@@ -160,12 +178,12 @@ TEST_CASE("the scripted simulator stands in for ngspice", "[verify]") {
   flat.data["time"] = {0, 3};
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
   probe.then_return(flat);
-  seen = verify::verify(scene, {}, probe);
+  seen = verify::verify(scene, paper(), probe);
   CHECK(!seen.passed);  // a dead circuit fails
 
   spice::ScriptedSimulator perfect;
   perfect.then_return(perfect_circuit(scene, seen));
-  const verify::VerifyResult r = verify::verify(scene, {}, perfect);
+  const verify::VerifyResult r = verify::verify(scene, paper(), perfect);
   INFO(verify::to_table(r));
   CHECK(r.passed);
   for (const auto& e : r.comparison.signals) CHECK(e.max_error < 1e-12);
@@ -179,17 +197,17 @@ TEST_CASE("an amplifier beyond one machine unit is an overload", "[verify]") {
   flat.data["time"] = {0, 3};
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
   probe.then_return(flat);
-  const verify::VerifyResult seen = verify::verify(scene, {}, probe);
+  const verify::VerifyResult seen = verify::verify(scene, paper(), probe);
   spice::Vectors v = perfect_circuit(scene, seen);
   v.data["v(m_n)"] = std::vector<double>(v.data["time"].size(), 0.0);
   v.data["v(m_n)"][100] = -12.5;  // -1.25 MU
   spice::ScriptedSimulator overloaded;
   overloaded.then_return(v);
-  const verify::VerifyResult r = verify::verify(scene, {}, overloaded);
+  const verify::VerifyResult r = verify::verify(scene, paper(), overloaded);
   REQUIRE(r.overloads.size() == 1);
   CHECK(r.overloads[0].node == "m_n");
   CHECK(r.overloads[0].value == Approx(-1.25));
-  CHECK(r.overloads[0].t == Approx(v.data["time"][100] / make_patch(scene).beta));
+  CHECK(r.overloads[0].t == Approx(v.data["time"][100] / paper_patch(scene).beta));
   CHECK(!r.passed);
 }
 
@@ -256,10 +274,10 @@ namespace {
 spice::Vectors perfect_vectors(const Scene& scene) {
   spice::ScriptedSimulator probe;
   spice::Vectors flat;
-  flat.data["time"] = {0, make_patch(scene).beta * scene.duration};
+  flat.data["time"] = {0, paper_patch(scene).beta * scene.duration};
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
   probe.then_return(flat);
-  return perfect_circuit(scene, verify::verify(scene, {}, probe));
+  return perfect_circuit(scene, verify::verify(scene, paper(), probe));
 }
 
 /// The message of the simulator Error verify throws on these vectors.
@@ -267,7 +285,7 @@ std::string simulator_failure(const Scene& scene, const spice::Vectors& vectors)
   spice::ScriptedSimulator simulator;
   simulator.then_return(vectors);
   try {
-    const verify::VerifyResult r = verify::verify(scene, {}, simulator);
+    const verify::VerifyResult r = verify::verify(scene, paper(), simulator);
     FAIL("verify gave a verdict (" << (r.passed ? "pass" : "fail") << ") on broken simulator output");
   } catch (const Error& e) {
     CHECK(e.kind() == Error::Kind::simulator);
@@ -372,12 +390,12 @@ TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; s
   flat.data["time"] = {0, 3};
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
   first.then_return(flat);
-  const verify::VerifyResult seen = verify::verify(scene, {}, first);
+  const verify::VerifyResult seen = verify::verify(scene, paper(), first);
   const spice::Vectors perfect = perfect_circuit(scene, seen);
 
   // Late by 0.5 % of the run: each value is the reference's 0.5 % earlier
   // (the circuit rests at its initial state until then).
-  const double shift = 0.005 * scene.duration * make_patch(scene).beta;
+  const double shift = 0.005 * scene.duration * paper_patch(scene).beta;
   spice::Vectors late = perfect;
   const auto& time = perfect.data.at("time");
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) {
@@ -391,7 +409,7 @@ TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; s
   }
   spice::ScriptedSimulator shifted;
   shifted.then_return(late);
-  const verify::VerifyResult r = verify::verify(scene, {}, shifted);
+  const verify::VerifyResult r = verify::verify(scene, paper(), shifted);
   INFO(verify::to_table(r));
   CHECK(r.passed);
   CHECK(r.comparison.worst_impact_shift == Approx(0.005).epsilon(0.01));
@@ -404,7 +422,7 @@ TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; s
     for (double& v : high.data[n]) v *= 1.02;
   spice::ScriptedSimulator scaled;
   scaled.then_return(high);
-  const verify::VerifyResult s = verify::verify(scene, {}, scaled);
+  const verify::VerifyResult s = verify::verify(scene, paper(), scaled);
   CHECK(!s.passed);
   CHECK_THAT(verify::to_table(s), Catch::Contains("leaves the tube"));
   // The plot shades the tube where the circuit leaves it and draws the band ±ε on Δφ.
@@ -424,8 +442,8 @@ TEST_CASE("verify fails a deck whose impact peak is 10 % low, the peak between g
                                     "output_step = 1e-3\n");
   const std::string deck_file = temp_file("stiff.cir");
   std::string output;
-  REQUIRE(testing::run_command(std::string(GEARPATCH_BINARY) + " netlist " + scene_file + " -o " + deck_file,
-                               output) == 0);
+  REQUIRE(testing::run_command(std::string(GEARPATCH_BINARY) + " netlist " + scene_file + " --scaling paper -o " +
+                                   deck_file, output) == 0);  // the paper's full scale, which the numbers below use
   const std::string verify = std::string(GEARPATCH_BINARY) + " verify " + scene_file + " --deck " + deck_file;
   CHECK(testing::run_command(verify, output) == 0);  // the deck as written passes, its peaks included
   INFO(output);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <set>
 
 #include "common/error.h"
 #include "scaling/patch.h"
@@ -20,6 +21,7 @@ class Builder {
     c_.machine = patch.machine;
     c_.beta = patch.beta;
     c_.autoscaled = patch.autoscaled;
+    c_.scaling = patch.scaling_name();
     c_.duration = patch.duration;
   }
 
@@ -42,7 +44,34 @@ class Builder {
   AmplifierInput through(const std::string& from, Setting pot, std::string ctrl = "") {
     const Potentiometer* p = patch_.find(pot);
     if (!p) throw Error("internal: the circuit needs " + to_string(pot) + " but the settings have none");
-    return {from, pot, static_cast<int>(p->weight), std::move(ctrl)};
+    return {p->stages == 0 ? from : staged(from, *p), pot, static_cast<int>(p->weight), std::move(ctrl)};
+  }
+
+  /// The extra stages of a solved coefficient no potentiometer reaches alone:
+  /// each an inverting amplifier, of gain n_max (a weight-n_max input) or of
+  /// gain α_min·n_min (alpha_stage into the smallest weight); an odd count is
+  /// followed by an inverter, so the potentiometer sees `from`'s sign. Built
+  /// once per source and potentiometer (alpha14 takes dw twice).
+  std::string staged(const std::string& from, const Potentiometer& p) {
+    const std::string base = fmt::format("stg_{}_{}", to_string(p.name), from);
+    if (!staged_.insert(base).second) return std::abs(p.stages) % 2 ? base + "_inv" : fmt::format("{}{}", base, std::abs(p.stages));
+    const std::vector<int>& w = c_.machine.weights;
+    const int largest = *std::max_element(w.begin(), w.end()), smallest = *std::min_element(w.begin(), w.end());
+    std::string node = from;
+    for (int i = 1; i <= std::abs(p.stages); ++i) {
+      const std::string out = fmt::format("{}{}", base, i);
+      const AmplifierInput in = p.stages > 0 ? AmplifierInput{node, std::nullopt, largest, ""}
+                                             : AmplifierInput{node, Setting::alpha_stage, smallest, ""};
+      amplifier(out, false, out, {in},
+                fmt::format("extra stage {} of {} for {}: gain -{:g}", i, std::abs(p.stages), to_string(p.name),
+                            p.stage_gain));
+      node = out;
+    }
+    if (std::abs(p.stages) % 2) {
+      inverter(base + "_inv", node, base + "_inv", "restores the sign after an odd number of stages");
+      node = base + "_inv";
+    }
+    return node;
   }
 
   void amplifier(std::string name, bool integrator, std::string out, std::vector<AmplifierInput> in,
@@ -71,6 +100,16 @@ class Builder {
       // a buffered wiper (a follower) carries no load: the dial is the setting
       c_.dial_settings[p.name] = patch_.machine.potentiometers_buffered ? p.setting : p.loaded_setting;
       c_.weights[p.name] = static_cast<int>(p.weight);
+    }
+    if (std::any_of(patch_.potentiometers.begin(), patch_.potentiometers.end(),
+                    [](const Potentiometer& p) { return p.stages < 0; })) {
+      // The attenuating stages' potentiometer: α_min into the smallest weight.
+      const MachineProfile& m = patch_.machine;
+      const int smallest = *std::min_element(m.weights.begin(), m.weights.end());
+      c_.parameters.emplace_back(Setting::alpha_stage, m.smallest_setting);
+      c_.dial_settings[Setting::alpha_stage] =
+          loaded_setting(m.smallest_setting, m.input_resistance / smallest / m.potentiometer_resistance);
+      c_.weights[Setting::alpha_stage] = smallest;
     }
     if (patch_.dead_zone) c_.parameters.emplace_back(Setting::a, *patch_.dead_zone);
     if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, patch_.delta1);
@@ -214,6 +253,7 @@ class Builder {
   const Patch& patch_;
   Level level_;
   bool has_xp_inverted_ = false;
+  std::set<std::string> staged_;
   Circuit c_;
 };
 
@@ -237,7 +277,7 @@ bool Circuit::uses(BlockKind kind) const {
 double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e-3; }
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
-double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 100 : 1e-4; }
+double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 10 : 1e-3; }
 
 Circuit build_circuit(const Patch& patch, Level level) {
   return Builder(patch, level).build();

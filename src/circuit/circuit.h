@@ -73,6 +73,7 @@ struct Circuit {
   std::map<Signal, Probe> probes;              ///< one per compared signal
   double beta = 1;                              ///< machine time = β · real time
   bool autoscaled = false;                      ///< scaled from the simulated peaks (--autoscale)
+  std::string scaling = "paper";                ///< the deck header's word (Patch::scaling_name)
   double duration = 1;                          ///< real time, s
 
   /// Every node an op-amp drives in its linear range (the overload check);
@@ -94,9 +95,12 @@ double comparator_offset(Level level);
 /// which is how the circuit holds a shaft at rest. The ideal level makes it
 /// as narrow as ngspice integrates robustly (1e-5 MU); a diode limiter on a
 /// real op-amp reaches a gain of about 1000 (1e-3 MU). The self-locking
-/// characteristic (block 16) is two orders of magnitude steeper at the ideal
-/// level, as section 6 asks; on hardware only one (1e-4 MU = 1 mV), since the
-/// op-amps' 1 mV offset would saturate anything steeper at zero input.
+/// characteristic (block 16) is one order of magnitude steeper at the ideal
+/// level (section 6 asks for two, but 1e-7 MU made ngspice abort a
+/// self-locking deck with "timestep too small" even under gear, 1e-6 MU
+/// finished it); on hardware it is as steep as block 14 (1e-3 MU,
+/// gain 1000): a gain of 1e4 behind a 3 MHz op-amp left the integrator loop
+/// so little phase margin that it oscillated at about 2 kHz.
 double friction_band(Level level);
 double lock_band(Level level);
 

@@ -17,7 +17,7 @@ namespace {
 std::string header(const Circuit& c, Level level, const MachineProfile& m, const TransientControl& control) {
   spice::DeckHeader made;
   made.level = std::string(level_name(level));
-  made.scaling = c.autoscaled ? "autoscale" : "paper";
+  made.scaling = c.scaling;
   made.beta = c.beta;
   made.unit_volts = m.unit_volts;
   made.integrator_constant = m.integrator_constant;

@@ -40,5 +40,6 @@ struct MonteCarloOutputPaths {
 /// Summarises a Monte Carlo run folder (however its draws were run) into
 /// the table, JSON and histogram; 3 if a draw has no result.
 int merge_monte_carlo(const runs::RunFolder& folder, const MonteCarloOutputPaths& paths);
+int run_random_scenes(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

@@ -19,11 +19,12 @@ int run_netlist(const std::vector<std::string>& args) {
        "ideal: high-gain op-amps, exact potentiometers, ideal function generators; "
        "hardware: TL071-class op-amps, resistor and capacitor values of the machine, "
        "potentiometers as loaded dividers, 1N4148 diodes, DG419-class switches")
-      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
-       "(as settings --autoscale) instead of the paper's a-priori maxima")
+      ("autoscale", "scale from the reference model's simulated peaks instead of the a-priori bounds "
+       "(as settings --autoscale)")
       ("out,o", po::value<std::string>(), "write the deck to FILE (default stdout; - is stdout)");
   add_quality_option(options, "; written into the deck's .options and .tran lines");
   add_machine_option(options);
+  add_scaling_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [--autoscale] [--quality Q] [-o FILE.cir]\n\n"
                        "Writes the analog computer program of the scene (the paper's Bild 4) as an\n"
@@ -43,6 +44,7 @@ int run_netlist(const std::vector<std::string>& args) {
   PatchOptions patch_options;
   patch_options.autoscale = vm.count("autoscale") > 0;
   patch_options.check_peaks = patch_options.autoscale;
+  if (paper_scaling(vm)) patch_options.method = ScalingMethod::paper;
   patch_options.comparator_offset = circuit::comparator_offset(level);
   const circuit::Circuit c = circuit::build_circuit(make_patch(scene, patch_options), level);
   const circuit::TransientControl control = chosen_quality(vm);

@@ -90,6 +90,19 @@ void add_quality_option(po::options_description& options, const std::string& not
                         (circuit::quality_help() + note).c_str());
 }
 
+void add_scaling_option(po::options_description& options) {
+  options.add_options()("scaling", po::value<std::string>()->default_value("solved"),
+                        "solved: every scale and β solved as one constraint problem (GLPK), an extra amplifier "
+                        "where no potentiometer reaches; paper: the paper's recipe (section 6's maxima, β from "
+                        "them, refused when a coefficient is beyond every weight), to check Table 1 by hand");
+}
+
+bool paper_scaling(const po::variables_map& vm) {
+  const std::string name = vm["scaling"].as<std::string>();
+  if (name != "solved" && name != "paper") throw Error("--scaling " + name + ": must be solved or paper");
+  return name == "paper";
+}
+
 circuit::TransientControl chosen_quality(const po::variables_map& vm) {
   return circuit::quality_preset(vm["quality"].as<std::string>()).control;
 }

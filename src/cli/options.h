@@ -45,6 +45,11 @@ double number_option(const po::variables_map& vm, const std::string& name, doubl
 /// run a deck, with each preset's measured error and time in its help.
 void add_quality_option(po::options_description& options, const std::string& note = "");
 
+/// Adds --scaling solved|paper: the constraint problem (default) or the paper's recipe.
+void add_scaling_option(po::options_description& options);
+/// --scaling paper was chosen; Error for anything but solved or paper.
+bool paper_scaling(const po::variables_map& vm);
+
 /// The transient settings of the --quality preset chosen; Error for an unknown name.
 circuit::TransientControl chosen_quality(const po::variables_map& vm);
 

@@ -16,23 +16,27 @@ int run_settings(const std::vector<std::string>& args) {
   options.add_options()
       ("beta", po::value<double>(), "time scale β (machine time = β·real time), 1e-6 … 1e6; default: the "
        "scene's machine.time_scale, else chosen automatically")
-      ("autoscale", "rescale every maximum from the simulated peak plus --headroom")
-      ("headroom", po::value<double>()->default_value(0.1, "0.1"), "autoscale headroom, 0 … 10 (0.1 = 10 %)")
+      ("autoscale", "solved: solve again with the simulated peaks as the bounds; paper: rescale every "
+       "maximum from the simulated peak plus --headroom")
+      ("headroom", po::value<double>()->default_value(0.1, "0.1"), "headroom, 0 … 10 (0.1 = 10 %): every "
+       "peak bound within 1/(1 + headroom) of the unit (paper: only with --autoscale)")
       ("no-check", "skip the simulation that checks every peak against its scale")
       ("exact-maxima", "keep the estimated speed maxima as computed instead of rounding them "
        "up to 1, 2, 5 × 10^n")
       ("comparator-offset", po::value<double>()->default_value(5e-3, "0.005"),
        "comparator offsets δ1, δ2 in machine units, (0, 0.5]: above the comparators' hysteresis and the "
        "op-amps' zero errors (the ideal netlist uses 1e-5)");
+  add_scaling_option(options);
   add_output_options(options, "the table", "the settings");
   add_machine_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
-                       "Amplitude and time scaling after section 6 of the paper and the potentiometer\n"
-                       "settings of Table 1: every coefficient as α·n, the dial position with the\n"
-                       "load connected, what was left out, and the simulated peak of every signal.\n"
-                       "Overloads are warnings (exit 0); an unreachable coefficient is an error (2);\n"
-                       "an internal error exits 4.",
+                       "Amplitude and time scaling and the potentiometer settings of Table 1: every\n"
+                       "scale and β solved as one constraint problem (or the paper's recipe with\n"
+                       "--scaling paper), every coefficient as α·n, the dial position with the load\n"
+                       "connected, the constraint that fixed each scale, what was left out, and the\n"
+                       "simulated peak of every signal. Overloads are warnings (exit 0); a scene no\n"
+                       "scaling fits is an error (2) naming the conflict; an internal error exits 4.",
                        options,
                        {"gearpatch settings scenes/bild5b.ini",
                         "gearpatch settings scenes/bild5b.ini --autoscale --json bild5b.settings.json"},
@@ -45,6 +49,7 @@ int run_settings(const std::vector<std::string>& args) {
   if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
+  if (paper_scaling(vm)) o.method = ScalingMethod::paper;
   o.check_peaks = vm.count("no-check") == 0;
   if (o.autoscale && !o.check_peaks) throw Error("--autoscale needs the simulation; drop --no-check");
   o.headroom = number_option(vm, "headroom", 0, 10);  // up to 1000 %

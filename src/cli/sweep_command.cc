@@ -28,6 +28,10 @@ sweep::SweepStudy study_from_options(const po::variables_map& vm) {
   study.options.signals = sweep::parse_signals(vm["signals"].as<std::string>());
   study.options.verify = vm.count("verify") > 0;
   study.options.level = circuit::parse_level(vm["level"].as<std::string>());
+  study.machine = chosen_machine(vm);
+  // a profile file is named absolutely, so that jobs run from any folder find it
+  if (!study.machine.empty() && std::filesystem::is_regular_file(study.machine))
+    study.machine = std::filesystem::absolute(study.machine).lexically_normal().string();
   return study;
 }
 
@@ -61,6 +65,7 @@ int run_sweep(const std::vector<std::string>& args) {
        "(what each job of the run folder does)")
       ("result", po::value<std::string>(), "with --point: the result file");
   add_output_options(options, "the table", "the table");
+  add_machine_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch sweep SCENE --set KEY=VALUES [--set KEY2=VALUES] [options]\n\n"
                        "Runs the reference model (and with --verify the circuit) at every point of\n"

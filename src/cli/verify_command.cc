@@ -13,6 +13,7 @@
 #include "common/output_set.h"
 #include "common/process.h"
 #include "scene/scene.h"
+#include "scaling/patch.h"
 #include "spice/deck_reader.h"
 #include "runs/pool.h"
 #include "tolerance/error_budget.h"
@@ -37,8 +38,13 @@ void hold_to_deck(const po::variables_map& vm, const spice::DeckHeader& h, const
   if (!vm["level"].defaulted() && vm["level"].as<std::string>() != h.level)
     refuse("--level " + vm["level"].as<std::string>(), "level", h.level);
   o.level = circuit::parse_level(h.level);
-  if (o.autoscale && h.scaling != "autoscale") refuse("--autoscale", "scaling", h.scaling);
-  o.autoscale = h.scaling == "autoscale";
+  const auto [method, autoscaled] = parse_scaling_name(h.scaling);
+  if (o.autoscale && !autoscaled) refuse("--autoscale", "scaling", h.scaling);
+  const bool paper = method == ScalingMethod::paper;
+  if (!vm["scaling"].defaulted() && (vm["scaling"].as<std::string>() == "paper") != paper)
+    refuse("--scaling " + vm["scaling"].as<std::string>(), "scaling", h.scaling);
+  o.autoscale = autoscaled;
+  o.paper_scaling = paper;
   if (h.quality == "custom") return;  // edited .tran settings: the options' grid it is
   if (!vm["quality"].defaulted() && vm["quality"].as<std::string>() != h.quality)
     refuse("--quality " + vm["quality"].as<std::string>(), "quality", h.quality);
@@ -87,8 +93,8 @@ int run_verify(const std::vector<std::string>& args) {
                    "number is refused), at most 100% (default {:g}% ideal, {:g}% hardware)",
                    100 * verify::default_tolerance(circuit::Level::ideal),
                    100 * verify::default_tolerance(circuit::Level::hardware)).c_str())
-      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom "
-       "(as settings --autoscale) instead of the paper's a-priori maxima; with --deck, the deck's own scaling")
+      ("autoscale", "scale from the reference model's simulated peaks instead of the a-priori bounds "
+       "(as settings --autoscale); with --deck, the deck's own scaling")
       ("deck", po::value<std::string>(), "check this deck (one you edited) instead of the generated one. "
        "A deck written by gearpatch netlist says its level, scaling and quality in its header, and verify "
        "holds to it; a deck without that header is read back with the options' level and scaling. "
@@ -105,6 +111,7 @@ int run_verify(const std::vector<std::string>& args) {
   add_output_options(options, "the report", "the report");
   add_quality_option(options, "; with --deck, the deck's own");
   add_machine_option(options);
+  add_scaling_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
@@ -121,6 +128,7 @@ int run_verify(const std::vector<std::string>& args) {
   o.level = circuit::parse_level(vm["level"].as<std::string>());
   if (vm.count("tolerance")) o.tolerance = percent_option(vm, "tolerance", 100);
   o.autoscale = vm.count("autoscale") > 0;
+  o.paper_scaling = paper_scaling(vm);
   o.transient = chosen_quality(vm);
   if (vm.count("deck")) {
     const std::string path = vm["deck"].as<std::string>();

@@ -10,6 +10,7 @@
 #include "scaling/table1.h"
 #include "scaling/time_scale.h"
 #include "scaling/scaling_input.h"
+#include "scaling/patch_parts.h"
 
 namespace gearpatch {
 
@@ -20,6 +21,19 @@ double delivered_fraction(double dial, double load_ratio) {
 double loaded_setting(double alpha, double load_ratio) {
   const double a = alpha, l = load_ratio, b = l - a;
   return 2 * a * l / (b + std::sqrt(b * b + 4 * a * a * l));
+}
+
+std::string Patch::scaling_name() const {
+  const bool paper = method == ScalingMethod::paper;
+  return paper ? (autoscaled ? "autoscale" : "paper") : (autoscaled ? "solved-autoscale" : "solved");
+}
+
+std::pair<ScalingMethod, bool> parse_scaling_name(const std::string& name) {
+  if (name == "paper") return {ScalingMethod::paper, false};
+  if (name == "autoscale") return {ScalingMethod::paper, true};  // the paper's recipe from simulated peaks
+  if (name == "solved") return {ScalingMethod::solved, false};
+  if (name == "solved-autoscale") return {ScalingMethod::solved, true};
+  throw Error("scaling " + name + ": must be paper, autoscale, solved or solved-autoscale");
 }
 
 const Potentiometer* Patch::find(Setting name) const {
@@ -76,6 +90,8 @@ std::string culprit(const Coefficient& c) {
   return "maxima.torque";
 }
 
+}  // namespace
+
 Potentiometer split(const Coefficient& c, double beta, const MachineProfile& machine,
                     const Maxima& m, double half_backlash) {
   const double table = c.at(beta);
@@ -108,8 +124,6 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
   return pot;
 }
 
-/// The maxima from the simulated peaks: each becomes its peak·(1 + headroom);
-/// a signal that stayed at zero keeps its a-priori maximum.
 Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std::vector<std::string>& notes) {
   Maxima m = a;
   const double f = 1 + headroom;
@@ -137,6 +151,8 @@ Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std:
   return m;
 }
 
+namespace {
+
 /// The maximum each peak signal is scaled by.
 const std::map<std::string, Maximum>& scale_keys() {
   static const std::map<std::string, Maximum> keys = {
@@ -147,6 +163,8 @@ const std::map<std::string, Maximum>& scale_keys() {
       {"tooth_friction", Maximum::torque}, {"lock_reaction", Maximum::torque}};
   return keys;
 }
+
+}  // namespace
 
 void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Patch& patch) {
   for (const auto& [signal, fraction] : peaks) {
@@ -159,6 +177,8 @@ void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Pat
                                          "its scale; {}", signal, fraction, 100 * (fraction - 1), fix));
   }
 }
+
+namespace {
 
 void check_and_autoscale(const GearParameters& p, const PatchOptions& o, const PeakRun& run,
                          Patch& patch) {
@@ -194,7 +214,9 @@ void add_notes(const ScalingInput& s, const GearParameters& p, const PatchOption
   if (patch.k0 != 1)
     patch.notes.push_back(fmt::format("integrator coefficients are Table 1's values (k0 = 1) divided "
                                       "by this machine's k0 = {:g}", patch.k0));
-  if (o.round_speeds && !s.rated_speed)
+  if (patch.method == ScalingMethod::solved)
+    ;  // the solved scaling states its bounds in maxima's basis
+  else if (o.round_speeds && !s.rated_speed)
     patch.notes.push_back("the a-priori speed maxima are estimated, then rounded up to 1, 2 or "
                           "5 × 10^n as a person patching by hand would (--exact-maxima keeps the "
                           "bound itself)");
@@ -209,9 +231,6 @@ void add_notes(const ScalingInput& s, const GearParameters& p, const PatchOption
                         "(R_in = input_resistance/n; initial values: input_resistance)");
 }
 
-/// The share of the run within which the self-locking reaction must catch a
-/// secondary turning at full scale against the engagement.
-constexpr double lock_catch_fraction = 1e-3;
 
 /// The paper's k_Re → ∞ stops the secondary at once; a machine can only
 /// drive an integrator at α·n ≤ the largest weight, so the reaction (blocks
@@ -238,9 +257,16 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
         "β >= {:.3g} keeps it within {:g} %", ts.beta, 1 / (strongest * k0 * ts.beta),
         100 / (strongest * k0 * ts.beta * s.duration), needed, 100 * lock_catch_fraction));
   }
+  dial_strongest_lock(s.machine, ts.beta, t);
+}
+
+}  // namespace
+
+void dial_strongest_lock(const MachineProfile& machine, double beta, Table1& t) {
+  const int strongest = *std::max_element(machine.weights.begin(), machine.weights.end());
   for (auto& c : t.entries)
     if (c.name == Setting::alpha_lock) {
-      c.rate = strongest * k0 * ts.beta;
+      c.rate = strongest * machine.integrator_constant * beta;
       c.formula = "M_Rem/(Θs·β·φ̇sm), M_Rem the strongest the machine dials";
       c.remark = "the paper's k_Re → ∞: the reaction (6.7) is dialled as strong as the machine "
                  "allows (α = 1 at the largest weight), far above the M0m + |M_L| + k_Rs it must "
@@ -248,6 +274,8 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
                  "steeper than block 14's";
     }
 }
+
+namespace {
 
 /// A belt behind the scene's ranges: a setting that is not a finite number is
 /// a bug in the scaling, never something to write into a deck.
@@ -262,6 +290,15 @@ void check_finite(const Patch& patch) {
     finite(pot.setting, to_string(pot.name) + " setting");
     finite(pot.loaded_setting, to_string(pot.name) + " loaded setting");
   }
+}
+
+/// The dead zone, the comparator offsets and the order of what was left out.
+void finish(const ScalingInput&, const GearParameters& p, const PatchOptions& o, Patch& patch) {
+  if (p.half_backlash > 0) patch.dead_zone = p.half_backlash / patch.maxima.twist;
+  if (p.half_backlash > 0 && p.damping > 0) patch.delta1 = o.comparator_offset;
+  if (p.self_locking) patch.delta2 = o.comparator_offset;
+  std::stable_sort(patch.unused.begin(), patch.unused.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
 }
 
 /// make_patch, with the reference run given or, when the peaks are checked, made here.
@@ -279,6 +316,16 @@ Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given
   if (!(o.comparator_offset > 0 && o.comparator_offset < 1))
     throw Error("the comparator offset must be in (0, 1) MU");
   if (o.beta && !(*o.beta > 0 && std::isfinite(*o.beta))) throw Error("β must be a number > 0");
+  patch.method = o.method;
+  if (o.method == ScalingMethod::solved) {
+    std::optional<PeakRun> own;
+    if (!given && (o.check_peaks || o.autoscale)) own = run_reference(s);
+    solve_patch(s, o, given ? given : own ? &*own : nullptr, patch);
+    finish(s, p, o, patch);
+    add_notes(s, p, o, Table1{}, patch);  // solve_patch noted Table 1's remarks
+    check_finite(patch);
+    return patch;
+  }
   patch.a_priori = patch.maxima = estimate_maxima(s, {o.round_speeds});
   if (o.check_peaks || o.autoscale) check_and_autoscale(p, o, given ? *given : run_reference(s), patch);
 
@@ -295,12 +342,8 @@ Patch compose(const ScalingInput& s, const PatchOptions& o, const PeakRun* given
   patch.beta_reason = ts.reason;
   patch.warnings.insert(patch.warnings.end(), ts.warnings.begin(), ts.warnings.end());
   for (const auto& c : t.entries) patch.potentiometers.push_back(split(c, ts.beta, s.machine, patch.maxima, p.half_backlash));
-  if (p.half_backlash > 0) patch.dead_zone = p.half_backlash / patch.maxima.twist;
-  if (p.half_backlash > 0 && p.damping > 0) patch.delta1 = o.comparator_offset;
-  if (p.self_locking) patch.delta2 = o.comparator_offset;
   patch.unused = t.unused;
-  std::stable_sort(patch.unused.begin(), patch.unused.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  finish(s, p, o, patch);
   add_notes(s, p, o, t, patch);
   check_finite(patch);
   return patch;

@@ -27,13 +27,27 @@ struct Potentiometer {
   Setting name{};
   std::string formula, feeds;
   double coefficient = 0, setting = 0, weight = 1, loaded_setting = 0;
+  /// Extra amplifiers in front (solved scaling): > 0 amplify by the largest
+  /// weight each, < 0 attenuate by alpha_stage into the smallest weight each;
+  /// coefficient = setting·weight·stage_gain^|stages|.
+  int stages = 0;
+  double stage_gain = 1;
 };
+
+/// How the scales are found: solved as one constraint problem (the default),
+/// or the paper's recipe (section 6's maxima, β from them; Table 1 by hand).
+enum class ScalingMethod { solved, paper };
 
 /// What make_patch is asked to do besides the a-priori scaling.
 struct PatchOptions {
+  ScalingMethod method = ScalingMethod::solved;
   bool check_peaks = true;   ///< run the reference model and report every peak
-  bool autoscale = false;    ///< rescale the maxima from the simulated peaks
-  double headroom = 0.1;     ///< autoscale: maximum = peak·(1 + headroom)
+  /// paper: rescale the maxima from the simulated peaks; solved: solve again
+  /// with the simulated peaks in place of the a-priori bounds
+  bool autoscale = false;
+  /// paper autoscale: maximum = peak·(1 + headroom); solved: every peak
+  /// bound stays within 1/(1 + headroom) of the unit
+  double headroom = 0.1;
   bool round_speeds = true;  ///< round estimated speed maxima up to 1-2-5 × 10^n
   std::optional<double> beta;       ///< overrides the scene's machine.time_scale
   /// δ1, δ2 in MU (the paper: "by experiment"). The default suits a real
@@ -58,6 +72,11 @@ struct Patch {
   Maxima maxima;       ///< the maxima the settings use
   Maxima a_priori;     ///< section 6's estimate (equal to maxima without autoscale)
   bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale), not section 6's
+  ScalingMethod method = ScalingMethod::solved;
+  /// Solved scaling: per scale (a Maximum key or "beta") the constraint that fixed it.
+  std::map<std::string, std::string> fixed_by;
+  double worst_level = 0;  ///< solved: the lowest peak bound / scale, MU
+  int extra_stages = 0;    ///< solved: extra amplifiers in front of potentiometers
   std::vector<Potentiometer> potentiometers;
   std::optional<double> dead_zone;  ///< a = ε/Δφm, MU; empty without backlash
   double delta1 = 0, delta2 = 0;    ///< comparator offsets, MU (0 when unused)
@@ -70,13 +89,22 @@ struct Patch {
   std::vector<std::string> notes;     ///< how the numbers were found
 
   const Potentiometer* find(Setting name) const;
+  /// "paper", "autoscale" (paper from simulated peaks), "solved" or
+  /// "solved-autoscale": the deck header's scaling word.
+  std::string scaling_name() const;
 };
 
-/// Settings for the scene: a-priori maxima (section 6), β, Table 1 split into
-/// α·n, loaded settings; with check_peaks a run of the reference model
-/// reports every signal's peak, with autoscale the maxima become the peaks
-/// plus headroom. Throws Error (input, about the scene key to change) for a
-/// coefficient no weight reaches, naming it and what to change.
+/// The scaling word of a deck header back to method and autoscale; Error on an unknown one.
+std::pair<ScalingMethod, bool> parse_scaling_name(const std::string& name);
+
+/// Settings for the scene. Solved (the default): every scale and β from the
+/// constraint problem of scaling_problem.h, with extra stages where no
+/// potentiometer reaches; Error (input, about the scene key to change) naming
+/// the conflicting constraints and the smallest change when nothing fits.
+/// Paper: a-priori maxima (section 6), β, Table 1 split into α·n; Error for a
+/// coefficient no weight reaches. Both: loaded settings; with check_peaks a
+/// run of the reference model reports every signal's peak; with autoscale
+/// the simulated peaks replace the a-priori bounds (paper: plus headroom).
 Patch make_patch(const ScalingInput& input, const PatchOptions& options = {});
 /// The same with the reference run already done (verify runs it once for the
 /// peak check and its comparison).

@@ -1,4 +1,5 @@
 // Text forms of a Patch: JSON for scripts, a table for the person patching.
+#include <cstdlib>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -30,12 +31,17 @@ std::string to_json(const Patch& patch) {
   j["maxima_basis"] = json::object();
   for (const auto& [key, how] : patch.maxima.basis) j["maxima_basis"][to_string(key)] = how;
   j["a_priori_maxima"] = maxima_json(patch.a_priori);
+  j["scaling"] = patch.scaling_name();
+  j["fixed_by"] = patch.fixed_by;  // solved: each scale (and beta) → the constraint that fixed it
+  j["worst_level"] = optional_number(patch.method == ScalingMethod::solved, patch.worst_level);
+  j["extra_stages"] = patch.extra_stages;
   j["potentiometers"] = json::array();
   for (const auto& p : patch.potentiometers)
     j["potentiometers"].push_back({{"name", to_string(p.name)}, {"formula", p.formula},
                                    {"coefficient", p.coefficient}, {"setting", p.setting},
                                    {"weight", static_cast<int>(p.weight)},
-                                   {"loaded_setting", p.loaded_setting}, {"feeds", p.feeds}});
+                                   {"loaded_setting", p.loaded_setting}, {"feeds", p.feeds},
+                                   {"stages", p.stages}, {"stage_gain", p.stage_gain}});
   j["dead_zone"] = patch.dead_zone ? json(*patch.dead_zone) : json(nullptr);
   j["delta1"] = optional_number(patch.delta1 > 0, patch.delta1);
   j["delta2"] = optional_number(patch.delta2 > 0, patch.delta2);
@@ -80,6 +86,16 @@ void maxima_section(const Patch& patch, std::string& out) {
     if (a_priori.at(key) != value) how += fmt::format(" (a priori {:.6g})", a_priori.at(key));
     out += fmt::format("  {:<16} {} {:<11.6g} {}\n", to_string(key), pad(symbol(key), 12), value, how);
   }
+  if (patch.fixed_by.empty()) return;
+  out += fmt::format("\nsolved scaling: worst signal level {:.3g} MU, {} extra stage(s); each scale fixed by:\n",
+                     patch.worst_level, patch.extra_stages);
+  out += fmt::format("  {:<16} {}\n", "scale", "fixed by");
+  for (const auto& [key, value] : patch.maxima.entries()) {
+    auto by = patch.fixed_by.find(to_string(key));
+    if (by != patch.fixed_by.end()) out += fmt::format("  {:<16} {}\n", to_string(key), by->second);
+  }
+  if (auto by = patch.fixed_by.find("beta"); by != patch.fixed_by.end())
+    out += fmt::format("  {:<16} {}\n", "beta", by->second);
 }
 
 void settings_section(const Patch& patch, std::string& out) {
@@ -87,9 +103,10 @@ void settings_section(const Patch& patch, std::string& out) {
                      "  {:<12} {:>11} {:>8} {:>3} {:>8}   {} feeds\n", "name", "value α·n", "α", "n",
                      "loaded", pad("formula (Table 1)", 42));
   for (const auto& p : patch.potentiometers)
-    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}\n", to_string(p.name), p.coefficient,
+    out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8.5f}   {} {}{}\n", to_string(p.name), p.coefficient,
                        p.setting, static_cast<int>(p.weight), p.loaded_setting, pad(p.formula, 42),
-                       p.feeds);
+                       p.feeds, p.stages == 0 ? "" : fmt::format(" [behind {} stage(s) of gain {:g}]",
+                                                                  std::abs(p.stages), p.stage_gain));
   if (patch.dead_zone)
     out += fmt::format("  {:<12} {:>11.6g} {:>8.5f} {:>3} {:>8}   {} threshold of the dead zone on X "
                        "(block 5)\n", "a", *patch.dead_zone, *patch.dead_zone, "", "", pad("ε/Δφm", 42));

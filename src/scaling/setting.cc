@@ -17,6 +17,7 @@ constexpr std::pair<Setting, const char*> setting_table[] = {
     {Setting::alpha_tooth, "alpha_tooth"}, {Setting::alpha_load, "alpha_load"},
     {Setting::alpha_lock, "alpha_lock"},   {Setting::a, "a"},
     {Setting::delta1, "delta1"},   {Setting::delta2, "delta2"},
+    {Setting::alpha_stage, "alpha_stage"},
 };
 
 }  // namespace

@@ -22,6 +22,11 @@ struct IntegratorRate {
 /// integrators, which comparators and diode blocks follow without lag).
 inline constexpr double max_machine_frequency_per_k0 = 100.0;
 
+/// The share of the run within which the self-locking reaction must catch a
+/// secondary turning at full scale against the engagement (the paper's
+/// k_Re → ∞ stops it at once); β is raised until it does.
+inline constexpr double lock_catch_fraction = 1e-3;
+
 /// The time scale and why it was chosen.
 struct TimeScale {
   double beta = 1;

@@ -43,6 +43,10 @@ void TrajectoryRecorder::event(const EventRecord& e) {
     c.side = e.mode_after.contact == Contact::positive ? 1 : -1;
     c.at_impact = c.at_release = e.before;
     c.restitution = std::numeric_limits<double>::quiet_NaN();
+    // The torque as the flanks meet, at the speeds before: a self-locking
+    // catch stops the secondary in the same instant, after the damping
+    // torque of the closing speed has acted (what the circuit's lock sees).
+    c.torque = {e.t, model_.torque(e.mode_after, e.before)};
     out_.contacts.push_back(c);
     in_contact_ = true;
   }

@@ -134,7 +134,9 @@ std::optional<DeckHeader> read_deck_header(std::string_view deck, const std::str
   };
   DeckHeader h;
   h.level = one_of("level", "ideal", "hardware");
-  h.scaling = one_of("scaling", "paper", "autoscale");
+  h.scaling = word("scaling");
+  if (h.scaling != "paper" && h.scaling != "autoscale" && h.scaling != "solved" && h.scaling != "solved-autoscale")
+    throw fail("scaling", h.scaling + ": must be solved, solved-autoscale, paper or autoscale");
   h.beta = positive("beta");
   h.unit_volts = positive("unit");
   h.integrator_constant = positive("k0");

@@ -32,7 +32,10 @@ void refuse_deck_commands(std::string_view deck, const std::string& path);
 /// deck's numbers mean nothing under another level or scaling.
 struct DeckHeader {
   std::string level = "ideal";    ///< ideal or hardware
-  std::string scaling = "paper";  ///< paper (section 6's a-priori maxima) or autoscale
+  /// solved, solved-autoscale (the constraint problem, from the a-priori or the
+  /// simulated peak bounds), paper or autoscale (the paper's recipe, a-priori or
+  /// from the simulated peaks: the words of decks written before the solver)
+  std::string scaling = "solved";
   double beta = 1;                ///< machine time = β · real time
   double unit_volts = 10;         ///< volts per machine unit
   double integrator_constant = 1; ///< k0, 1/s

@@ -113,7 +113,8 @@ nlohmann::json run_point(const Scene& scene, const PointOptions& options) {
     double worst = 0;
     for (const verify::SignalError& e : v.comparison.signals) worst = std::max(worst, e.max_error);
     result["verify"] = {{"level", std::string(level_name(v.level))}, {"passed", v.passed},
-                        {"worst_error", worst}, {"tolerance", v.tolerance}, {"failures", v.failures}};
+                        {"worst_error", worst}, {"tolerance", v.tolerance}, {"failures", v.failures},
+                        {"machine", scene.machine.name}, {"beta", v.beta}};
   }
   return result;
 }

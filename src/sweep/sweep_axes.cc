@@ -139,9 +139,10 @@ std::string assign(const std::string& scene_text, const Assignment& point) {
   return out + appended;
 }
 
-Scene point_scene(const std::string& scene_text, const std::string& source, const Assignment& point) {
+Scene point_scene(const std::string& scene_text, const std::string& source, const Assignment& point,
+                  const std::string& machine) {
   try {
-    return parse_scene(assign(scene_text, point), source);
+    return parse_scene(assign(scene_text, point), source, machine);
   } catch (const Error& e) {
     throw Error(fmt::format("--set {}: {}", point_label(point), e.what()), e.kind());
   }

@@ -39,6 +39,7 @@ std::string assign(const std::string& scene_text, const Assignment& point);
 /// The point's scene read from the assigned text; a bad value is refused
 /// with the scene reader's own file:line: key message behind the --set it
 /// came from.
-Scene point_scene(const std::string& scene_text, const std::string& source, const Assignment& point);
+Scene point_scene(const std::string& scene_text, const std::string& source, const Assignment& point,
+                  const std::string& machine = "");
 
 }  // namespace gearpatch::sweep

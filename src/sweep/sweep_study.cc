@@ -26,7 +26,8 @@ nlohmann::json to_json(const SweepStudy& study) {
           {"axes", axes},
           {"signals", signals},
           {"verify", study.options.verify},
-          {"level", std::string(circuit::level_name(study.options.level))}};
+          {"level", std::string(circuit::level_name(study.options.level))},
+          {"machine", study.machine}};
 }
 
 SweepStudy study_from_json(const nlohmann::json& j) {
@@ -39,6 +40,7 @@ SweepStudy study_from_json(const nlohmann::json& j) {
     for (const auto& name : j.at("signals")) s.options.signals.push_back(parse_signal(name.get<std::string>()));
     s.options.verify = j.at("verify").get<bool>();
     s.options.level = circuit::parse_level(j.at("level").get<std::string>());
+    s.machine = j.value("machine", "");
     return s;
   } catch (const nlohmann::json::exception& e) {
     throw Error(fmt::format("the sweep's manifest is incomplete: {}", e.what()));
@@ -47,7 +49,7 @@ SweepStudy study_from_json(const nlohmann::json& j) {
 
 void check_points(const SweepStudy& study, const std::string& source) {
   const std::string text = read_file(source);
-  for (const Assignment& point : study.points()) point_scene(text, source, point);
+  for (const Assignment& point : study.points()) point_scene(text, source, point, study.machine);
 }
 
 std::vector<runs::Job> sweep_jobs(const SweepStudy& study) {
@@ -65,6 +67,7 @@ std::vector<runs::Job> sweep_jobs(const SweepStudy& study) {
     job.argv.insert(job.argv.end(), {"--signals", signals});
     if (study.options.verify)
       job.argv.insert(job.argv.end(), {"--verify", "--level", std::string(circuit::level_name(study.options.level))});
+    if (!study.machine.empty()) job.argv.insert(job.argv.end(), {"--machine", study.machine});
     job.argv.insert(job.argv.end(), {"--point", std::to_string(i)});
     jobs.push_back(std::move(job));
   }
@@ -76,7 +79,7 @@ void run_sweep_point(const SweepStudy& study, std::size_t index, const std::stri
   if (index >= points.size())
     throw Error(fmt::format("--point {}: the sweep has points 0 … {}", index, points.size() - 1));
   const Assignment& point = points[index];
-  const Scene scene = point_scene(read_file(study.scene_path), study.scene_path, point);
+  const Scene scene = point_scene(read_file(study.scene_path), study.scene_path, point, study.machine);
   nlohmann::json values = nlohmann::json::object();
   for (const auto& [key, value] : point) values[key] = value;
   nlohmann::json result = run_point(scene, study.options);

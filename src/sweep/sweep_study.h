@@ -18,6 +18,7 @@ struct SweepStudy {
   std::string scene_path;  ///< absolute, so that jobs run from any folder
   std::vector<Axis> axes;
   PointOptions options;
+  std::string machine;  ///< --machine (a name, or an absolute profile path); "" for the scene's own
 
   std::vector<Assignment> points() const { return cartesian_points(axes); }
 };

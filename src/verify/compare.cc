@@ -60,6 +60,10 @@ std::pair<std::vector<double>, std::vector<double>> reference_curve(const Trajec
   for (const Sample& s : ref.samples) {
     for (; event != ref.events.end() && event->t <= s.t; ++event) {
       t.push_back(event->t), y.push_back(signal_of(signal, model, event->mode_before, event->before));
+      // Flanks meeting: the contact's first instant at the speeds before, which
+      // differ from those after when a self-locking gear catches the secondary.
+      if (event->mode_after.contact != event->mode_before.contact && event->mode_after.contact != Contact::free)
+        t.push_back(event->t), y.push_back(signal_of(signal, model, event->mode_after, event->before));
       t.push_back(event->t), y.push_back(signal_of(signal, model, event->mode_after, event->after));
     }
     t.push_back(s.t), y.push_back(value(s, signal));

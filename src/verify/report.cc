@@ -47,7 +47,7 @@ std::string to_table(const VerifyResult& r) {
                      r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
                                                 : "--deck without a gearpatch header, level and scaling "
                                                   "from the options (not checked against the deck)",
-                     level_name(r.level), r.autoscaled ? "autoscale" : "paper");
+                     level_name(r.level), r.scaling);
   t += fmt::format("{:<9} {:>12} {:>8} {:>12} {:>12} {:>8} {:>8}  {}\n", "signal", "full scale", "unit",
                    "amplitude %", "pointwise %", "rms %", "outside", "worst at t [s]");
   for (const auto& e : r.comparison.signals)
@@ -70,7 +70,11 @@ std::string to_table(const VerifyResult& r) {
   for (const auto& o : r.overloads)
     t += fmt::format("OVERLOAD {} = {:.4g} MU at t = {:.6g} s\n", o.node, o.value, o.t);
   for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
-  t += fmt::format("ngspice: {:.2f} s\n\n", r.ngspice_seconds);
+  t += fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds);
+  if (r.retry)
+    t += fmt::format("ngspice retry: the first run aborted ({}); ran once more with {}\n", r.retry->first_failure,
+                     r.retry->change);
+  t += "\n";
   if (r.passed) return t + "PASS\n";
   t += "FAIL\n";
   for (const auto& f : r.failures) t += "  - " + f + "\n";
@@ -87,8 +91,10 @@ std::string to_json(const VerifyResult& r) {
   j["passed"] = r.passed;
   j["beta"] = r.beta;
   j["deck_scaling"] = r.deck_scaling;  // generated, header or options
-  j["scaling"] = r.autoscaled ? "autoscale" : "paper";
+  j["scaling"] = r.scaling;
   j["ngspice_seconds"] = r.ngspice_seconds;
+  j["retry"] = r.retry ? nlohmann::json{{"first_failure", r.retry->first_failure}, {"change", r.retry->change}}
+                       : nlohmann::json(nullptr);
   for (const auto& e : r.comparison.signals)
     j["signals"][to_string(e.signal)] = {{"full_scale", e.full_scale}, {"max_error", e.max_error},
                                          {"pointwise_error", e.pointwise_error}, {"rms_error", e.rms_error},

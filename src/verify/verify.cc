@@ -107,19 +107,30 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   PatchOptions patch_options;
   patch_options.comparator_offset = circuit::comparator_offset(options.level);
   patch_options.autoscale = options.autoscale;
+  if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
   const Patch patch = make_patch(input, patch_options, run);
   r.warnings = patch.warnings;
   circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
   if (options.alter_circuit) options.alter_circuit(circuit);
   r.beta = circuit.beta;
   r.autoscaled = circuit.autoscaled;
+  r.scaling = circuit.scaling;
   if (options.deck_header) check_deck_header(*options.deck_header, circuit);
   if (options.deck_text) r.deck_scaling = options.deck_header ? "header" : "options";
   const std::string deck = options.deck_text.value_or(
       circuit::render_netlist(circuit, options.transient));
 
   const auto start = std::chrono::steady_clock::now();
-  const spice::Vectors vectors = simulator.run(deck, options.limits);
+  // One bounded retry of a generated deck that ngspice aborts: the stiffly
+  // stable gear method, which damps what trap lets ring at a switching corner.
+  const auto with_gear = [&]() -> std::optional<std::string> {
+    if (options.deck_text || options.transient.method == "gear") return std::nullopt;
+    circuit::TransientControl gear = options.transient;
+    gear.method = "gear";
+    return circuit::render_netlist(circuit, gear);
+  };
+  const spice::Vectors vectors =
+      spice::run_with_retry(simulator, deck, options.limits, with_gear, "method=gear", r.retry);
   r.ngspice_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   check_simulator_output(vectors, circuit);
 

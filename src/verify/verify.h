@@ -9,6 +9,7 @@
 #include "model/gear_model.h"
 #include "solver/trajectory.h"
 #include "spice/deck_reader.h"
+#include "spice/retry.h"
 #include "spice/simulator.h"
 #include "verify/compare.h"
 
@@ -27,6 +28,7 @@ struct VerifyOptions {
   /// transient above must agree with it; its β and machine are checked here.
   std::optional<spice::DeckHeader> deck_header;
   bool autoscale = false;               ///< scale from the simulated peaks + 10 % (settings --autoscale)
+  bool paper_scaling = false;           ///< the paper's recipe (--scaling paper) instead of the solved scaling
   circuit::TransientControl transient;
   spice::RunLimits limits;
   /// Changes the built circuit before it is rendered: one machine as built
@@ -50,12 +52,15 @@ struct VerifyResult {
   std::vector<Overload> overloads;
   double beta = 1;
   double duration = 0;  ///< s, real time of the run
-  double ngspice_seconds = 0;
+  double ngspice_seconds = 0;  ///< both runs, if there was a retry
+  /// Set when ngspice aborted the generated deck and the one retry ran it.
+  std::optional<spice::Retry> retry;
   /// Whose scaling the deck was read back with: "generated" (verify's own
   /// deck), "header" (a --deck's gearpatch header) or "options" (a --deck
   /// without one: level and scaling as the options say, unchecked).
   std::string deck_scaling = "generated";
   bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale)
+  std::string scaling = "solved";  ///< the deck header's word: solved, solved-autoscale, paper, autoscale
   GearParameters gear;  ///< the reference model's, for the plot
   Trajectory reference;
   CircuitTrace circuit;
