@@ -126,11 +126,15 @@ int offset_sign(const std::string& name) {
 /// of its + input that turns the shared model's +Vos into -Vos.
 void offset_of(const std::string& name, const MachineProfile& m, data& ctx) {
   const double vos = m.amplifier.offset_volts;
+  const auto drawn = m.amplifier.offsets_by_name.find(name);
   const int sign = m.amplifier.random_sign ? offset_sign(name) : 1;
-  ctx.set("sj_ic", num(-sign * vos));
-  ctx.set("plus", sign > 0 ? std::string("0") : std::string("nref"));
-  ctx.set("offset_flip", sign < 0);
-  ctx.set("offset_delta", num(2 * vos));
+  const double target = drawn != m.amplifier.offsets_by_name.end() ? drawn->second : sign * vos;
+  // The source turns the shared model's +Vos into the target: Vos - delta.
+  const double delta = vos - target;
+  ctx.set("sj_ic", num(-target));
+  ctx.set("plus", delta == 0 ? std::string("0") : std::string("nref"));
+  ctx.set("offset_flip", delta != 0);
+  ctx.set("offset_delta", num(delta));
 }
 
 /// Every number any template of the level may use.

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "common/error.h"
+#include "runs/job_list.h"
 
 namespace gearpatch::cli {
 
@@ -29,6 +30,16 @@ int run_sweep(const std::vector<std::string>& args);
 int run_merge(const std::vector<std::string>& args);
 int run_figures(const std::vector<std::string>& args);
 int run_patch(const std::vector<std::string>& args);
+int run_monte_carlo(const std::vector<std::string>& args);
+int run_budget(const std::vector<std::string>& args);
+
+/// Where a Monte Carlo's summary goes: the table ("-" stdout, "" stderr), --json, --plot ("" none).
+struct MonteCarloOutputPaths {
+  std::string table, json, plot;
+};
+/// Summarises a Monte Carlo run folder (however its draws were run) into
+/// the table, JSON and histogram; 3 if a draw has no result.
+int merge_monte_carlo(const runs::RunFolder& folder, const MonteCarloOutputPaths& paths);
 int run_random_scenes(const std::vector<std::string>& args);
 
 }  // namespace gearpatch::cli

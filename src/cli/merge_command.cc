@@ -2,6 +2,7 @@
 #include "cli/options.h"
 #include "runs/job_list.h"
 #include "sweep/sweep_outputs.h"
+#include "tolerance/monte_carlo.h"
 
 namespace gearpatch::cli {
 
@@ -14,7 +15,7 @@ int run_merge(const std::vector<std::string>& args) {
   add_output_options(options, "the table", "the table");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch merge RUNDIR [options]\n\n"
-                       "Reads the results of a run folder written by `sweep --job-list` (however its\n"
+                       "Reads the results of a run folder written by `sweep --job-list` or `monte-carlo --job-list` (however its\n"
                        "jobs were run: GNU Parallel, a Slurm array, by hand) and writes the same\n"
                        "table, CSV, JSON and plots as the sweep itself. A job without a result is\n"
                        "counted and named. Exit status as sweep's.",
@@ -26,6 +27,10 @@ int run_merge(const std::vector<std::string>& args) {
     return 0;
   const runs::RunFolder folder(single_file(vm, "merge", "RUNDIR"));
   const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };
+  if (tolerance::is_monte_carlo(folder.manifest().at("study"))) {
+    if (vm.count("csv") || vm.count("figures-plot")) throw Error("merge: --csv and --figures-plot are a sweep's; a Monte Carlo has --json and --plot");
+    return merge_monte_carlo(folder, {main_output(vm, {"json"}), get("json"), get("plot")});
+  }
   sweep::SweepOutputs outputs({main_output(vm, {"json", "csv"}), get("json"), get("csv"), get("plot"),
                                get("figures-plot")});
   return sweep::merge_and_write(folder, outputs);

@@ -1,4 +1,7 @@
+#include <algorithm>
 #include <cstdio>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <fmt/format.h>
 
 #include "circuit/quality.h"
@@ -12,6 +15,10 @@
 #include "scene/scene.h"
 #include "scaling/patch.h"
 #include "spice/deck_reader.h"
+#include "runs/pool.h"
+#include "tolerance/error_budget.h"
+#include "tolerance/measured_diagnosis.h"
+#include "tolerance/variants.h"
 #include "verify/report.h"
 #include "verify/verify.h"
 
@@ -54,6 +61,25 @@ void stage_plot(OutputSet& outputs, const verify::VerifyResult& result, const st
   }
 }
 
+/// Whether every signal stayed within its predicted budget.
+bool met_budget(const verify::VerifyResult& r, const tolerance::ErrorBudget& b) {
+  for (const auto& [signal, error] : tolerance::signal_errors(r))
+    if (error > b.predicted.at(signal) * (1 + 1e-9)) return false;
+  return true;
+}
+
+std::string budget_verdict(const verify::VerifyResult& r, const tolerance::ErrorBudget& b) {
+  std::string t = "\n" + tolerance::to_table(b);
+  std::string over;
+  for (const auto& [signal, error] : tolerance::signal_errors(r))
+    if (error > b.predicted.at(signal) * (1 + 1e-9))
+      over += fmt::format("{}{} {:.3g} % > {:.3g} %", over.empty() ? "" : ", ", to_string(signal), 100 * error,
+                          100 * b.predicted.at(signal));
+  t += over.empty() ? fmt::format("the circuit met its error budget (judged at {:g} %)\n", 100 * r.tolerance)
+                    : fmt::format("the circuit did NOT meet its error budget: {}\n", over);
+  return t;
+}
+
 }  // namespace
 
 int run_verify(const std::vector<std::string>& args) {
@@ -74,6 +100,8 @@ int run_verify(const std::vector<std::string>& args) {
        "holds to it; a deck without that header is read back with the options' level and scaling. "
        "ngspice runs it as written, so a deck with .control blocks (which can run shell commands), "
        "*# commands or .include/.lib is refused unless --allow-control")
+      ("no-budget", "at the hardware level without --tolerance: judge at the hardware default (2%) instead of "
+       "the scene's predicted error budget (see gearpatch budget), and skip its runs")
       ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
        "a plot that cannot be made is a warning, the verdict stands")
@@ -123,12 +151,38 @@ int run_verify(const std::vector<std::string>& args) {
   const Scene scene = load_scene(file, chosen_machine(vm));
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
+  // At the hardware level the machine's own tolerances set the bar, unless the user gave one.
+  std::optional<tolerance::ErrorBudget> budget;
+  if (o.level == circuit::Level::hardware && !o.tolerance && !o.deck_text && !vm.count("no-budget")) {
+    budget = tolerance::error_budget(scene, o, runs::core_count());
+    o.tolerance = std::max(verify::default_tolerance(o.level), budget->worst() * (1 + 1e-9));
+  }
   auto simulator = spice::make_batch_ngspice();
-  const verify::VerifyResult result = verify::verify(scene, o, *simulator);
-  const std::string table = verify::to_table(result);
+  verify::VerifyResult result = verify::verify(scene, o, *simulator);
+  // A failure's causes, measured on changed copies of the deck (a user's deck cannot be changed so).
+  if (!result.passed && !o.deck_text) {
+    const auto causes = tolerance::diagnose_by_measurement(scene, o, result, runs::core_count());
+    std::vector<std::string> lines;
+    for (const auto& c : causes) lines.push_back(c.sentence());
+    if (causes.empty())
+      lines.push_back("no single change measured (offsets, δ, friction characteristic, switches, hysteresis, a finer "
+                      "step) shrinks the error by a tenth of its excess: the causes add up");
+    for (const std::string& rule : result.diagnosis)
+      if (rule.rfind("overload", 0) == 0 || rule.find("< 0.1") != std::string::npos) lines.push_back(rule);
+    result.diagnosis = lines;
+  }
+  std::string table = verify::to_table(result);
+  std::string json = verify::to_json(result);
+  if (budget) {
+    table += budget_verdict(result, *budget);
+    nlohmann::json j = nlohmann::json::parse(json);
+    j["budget"] = tolerance::to_json(*budget);
+    j["met_budget"] = met_budget(result, *budget);
+    json = j.dump(2) + "\n";
+  }
   std::vector<std::string> warnings;
   if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", verify::to_json(result));
+  if (outputs.has("--json")) outputs.stage("--json", json);
   if (outputs.has("--plot")) stage_plot(outputs, result, plot_as, warnings);
   outputs.commit();
   if (report_to.empty()) std::fputs(table.c_str(), stderr);

@@ -29,6 +29,10 @@ struct AmplifierModel {
   /// deck is reproducible); false: every offset positive, as decks were before profiles.
   bool random_sign = false;
   double gain = 2e5, bandwidth_hz = 3e6, slew_volts_per_second = 1.3e7;
+  /// One machine as built (a Monte Carlo draw, an ablation): the signed input
+  /// offset of an amplifier by its subckt name ("gp_int_p"), in volts, in
+  /// place of offset_volts and its sign. Empty for a profile.
+  std::map<std::string, double> offsets_by_name;
 };
 
 /// The elements a nonlinear block (dead_zone, limiter, abs, halfwave,

@@ -9,13 +9,10 @@
 
 namespace gearpatch::verify {
 
-/// The likely causes of a failed verify, each a sentence with its numbers
-/// and what to change: overloads, the comparator offset δ1 delaying the
-/// damping switch (seen as a wrong restitution or extra impacts), op-amp
-/// offsets drifting the hardware integrators over a long machine run, and
-/// potentiometers set below 0.1.
-std::vector<std::string> diagnose(const VerifyResult& result, const Patch& patch,
-                                  const circuit::Circuit& circuit, const GearParameters& gear,
-                                  double duration, const MachineProfile& machine);
+/// The causes of a failed verify that a rule can read off the run itself,
+/// each a sentence with its numbers and what to change: overloads and
+/// potentiometers set below 0.1. The rest is measured on changed copies of
+/// the deck (tolerance/measured_diagnosis.h), which `gearpatch verify` runs.
+std::vector<std::string> diagnose(const VerifyResult& result, const Patch& patch);
 
 }  // namespace gearpatch::verify

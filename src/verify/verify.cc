@@ -110,7 +110,8 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
   const Patch patch = make_patch(input, patch_options, run);
   r.warnings = patch.warnings;
-  const circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
+  circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
+  if (options.alter_circuit) options.alter_circuit(circuit);
   r.beta = circuit.beta;
   r.autoscaled = circuit.autoscaled;
   r.scaling = circuit.scaling;
@@ -145,7 +146,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
   judge(r);
   if (!r.passed)
-    r.diagnosis = diagnose(r, patch, circuit, model.parameters(), scene.duration, scene.machine);
+    r.diagnosis = diagnose(r, patch);
   return r;
 }
 

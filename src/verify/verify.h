@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ struct VerifyOptions {
   bool paper_scaling = false;           ///< the paper's recipe (--scaling paper) instead of the solved scaling
   circuit::TransientControl transient;
   spice::RunLimits limits;
+  /// Changes the built circuit before it is rendered: one machine as built
+  /// (a Monte Carlo draw), one imperfection alone (the error budget, diagnosis).
+  std::function<void(circuit::Circuit&)> alter_circuit;
 };
 
 /// The default pass/fail tolerance of a level, as a fraction of full scale.

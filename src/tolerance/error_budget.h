@@ -1,0 +1,47 @@
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tolerance/variants.h"
+
+namespace gearpatch::tolerance {
+
+/// One component tolerance's share of each signal's error.
+struct ComponentShare {
+  std::string component;           ///< "offset gp_amp_xp", "potentiometer resolution"
+  std::map<Signal, double> error;  ///< fraction of full scale
+  double largest() const;
+};
+
+/// The error a scene should show on a machine, predicted before any
+/// Monte Carlo: the nominal error with perfect components (every offset
+/// zero, every setting exact: bandwidth, diodes, δ, hysteresis remain), plus
+/// the root-sum-square of each tolerance's share. A share is measured by
+/// injecting that one imperfection at its RMS size into the perfect deck,
+/// with both signs when the profile's offsets take random signs, and taking
+/// the larger change of the signal's amplitude error.
+struct ErrorBudget {
+  std::string scene, machine;
+  double offset_rms_volts = 0;
+  std::map<Signal, double> nominal;
+  std::vector<ComponentShare> shares;  ///< largest first
+  std::map<Signal, double> predicted;  ///< nominal + RSS of the shares
+  Signal worst_signal{};
+  std::string dominant;                ///< the share that weighs most in worst_signal's RSS
+  std::vector<std::string> advice;     ///< what would shrink it
+  std::vector<std::string> failed;     ///< variants that could not run
+
+  double worst() const { return predicted.at(worst_signal); }
+};
+
+/// Runs the perfect deck and one variant per tolerance (verify at the
+/// hardware level on `base`'s scaling), `workers` at a time.
+ErrorBudget error_budget(const Scene& scene, verify::VerifyOptions base, unsigned workers);
+
+std::string to_table(const ErrorBudget& budget);
+nlohmann::json to_json(const ErrorBudget& budget);
+
+}  // namespace gearpatch::tolerance
