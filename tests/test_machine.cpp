@@ -149,3 +149,19 @@ TEST_CASE("settings --machine with an unknown machine exits 2 and names the ship
                              output) == 0);
   CHECK_THAT(output, Catch::Contains("k0 = 1/s"));
 }
+
+TEST_CASE("a buffered potentiometer is dialled at its setting, an unbuffered one at the loaded setting", "[machine]") {
+  const std::string path = testing::source_path("scenes/bild5b.ini");
+  const Patch buffered = make_patch(load_scene(path, "the-analog-thing"), quick());
+  REQUIRE(buffered.machine.potentiometers_buffered);
+  for (const auto& pot : buffered.potentiometers) CHECK(pot.loaded_setting == pot.setting);
+  const Patch unbuffered = make_patch(load_scene(path, "generic"), quick());
+  REQUIRE(!unbuffered.machine.potentiometers_buffered);
+  const MachineProfile& m = unbuffered.machine;
+  for (const auto& pot : unbuffered.potentiometers) {
+    // the closed form: the dial that delivers α into the input's load R/n
+    const double load = m.input_resistance / pot.weight / m.potentiometer_resistance;
+    CHECK(delivered_fraction(pot.loaded_setting, load) == Approx(pot.setting).epsilon(1e-12));
+    if (pot.setting > 0 && pot.setting < 0.99) CHECK(pot.loaded_setting > pot.setting);
+  }
+}

@@ -36,6 +36,12 @@ std::pair<ScalingMethod, bool> parse_scaling_name(const std::string& name) {
   throw Error("scaling " + name + ": must be paper, autoscale, solved or solved-autoscale");
 }
 
+double dial_setting(double setting, double weight, const MachineProfile& machine) {
+  if (machine.potentiometers_buffered) return setting;
+  const double load = machine.input_resistance / weight / machine.potentiometer_resistance;
+  return std::clamp(loaded_setting(setting, load), setting, 1.0);
+}
+
 const Potentiometer* Patch::find(Setting name) const {
   for (const auto& p : potentiometers)
     if (p.name == name) return &p;
@@ -119,8 +125,7 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
   pot.coefficient = coefficient;
   pot.weight = *fits;
   pot.setting = std::min(1.0, size / pot.weight);
-  const double load = machine.input_resistance / pot.weight / machine.potentiometer_resistance;
-  pot.loaded_setting = std::clamp(loaded_setting(pot.setting, load), pot.setting, 1.0);
+  pot.loaded_setting = dial_setting(pot.setting, pot.weight, machine);
   return pot;
 }
 

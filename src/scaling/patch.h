@@ -123,6 +123,11 @@ double delivered_fraction(double dial, double load_ratio);
 /// of α·x² + (λ − α)·x − α·λ = 0, x = 2αλ/((λ − α) + sqrt((λ − α)² + 4α²λ)).
 double loaded_setting(double alpha, double load_ratio);
 
+/// The dial position of a potentiometer of `setting` into an input of
+/// `weight` on `machine`: the loaded setting, or the setting itself where the
+/// machine buffers its wipers (no load on them).
+double dial_setting(double setting, double weight, const MachineProfile& machine);
+
 /// The patch as JSON: beta, k0, unit_volts, maxima, potentiometers (name,
 /// formula, coefficient, setting, weight, loaded_setting, feeds), dead_zone,
 /// delta1, delta2, unused, peaks, and the rest of the report.

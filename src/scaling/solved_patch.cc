@@ -77,8 +77,7 @@ Potentiometer realise(const Coefficient& c, const CoefficientChoice& choice, dou
   pot.stages = choice.stages;
   pot.stage_gain = choice.stages > 0 ? amplify : choice.stages < 0 ? attenuate : 1;
   pot.setting = std::clamp(table / (pot.weight * std::pow(pot.stage_gain, std::abs(pot.stages))), 0.0, 1.0);
-  const double load = s.machine.input_resistance / pot.weight / s.machine.potentiometer_resistance;
-  pot.loaded_setting = std::clamp(loaded_setting(pot.setting, load), pot.setting, 1.0);
+  pot.loaded_setting = dial_setting(pot.setting, pot.weight, s.machine);
   return pot;
 }
 
