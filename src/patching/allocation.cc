@@ -318,8 +318,8 @@ std::string Allocation::run_mode() const {
   const double machine_time = beta * duration;
   const bool repetitive = std::find(machine.modes.begin(), machine.modes.end(), "REP") != machine.modes.end();
   if (repetitive && machine.op_time > 0 && machine_time <= machine.op_time)
-    return fmt::format("REP (repetitive), OP time {} s", format_number(machine_time));
-  return fmt::format("OP (single run), {} s of machine time", format_number(machine_time));
+    return fmt::format("REP (repetitive), OP time {:.4g} s", machine_time);
+  return fmt::format("OP (single run), {:.4g} s of machine time", machine_time);
 }
 
 Allocation allocate(const circuit::Circuit& circuit) { return Allocator(circuit).run(); }

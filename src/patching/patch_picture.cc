@@ -64,8 +64,8 @@ std::string to_dot(const Allocation& a, const circuit::Circuit& c) {
   std::string dot = fmt::format(
       "digraph patch {{\n  rankdir=LR;\n  label={};\n  labelloc=t;\n  fontname=\"DejaVu Sans\";\n"
       "  node [fontname=\"DejaVu Sans\", fontsize=10];\n  edge [fontname=\"DejaVu Sans\", fontsize=9];\n",
-      dot_string(fmt::format("{} on {}: k0 switch {}, β = {}, {}", a.scene, a.machine.name,
-                         a.machine.integrator_constant_label(), format_number(a.beta), a.run_mode())));
+      dot_string(fmt::format("{} on {}: k0 switch {}, β = {:.6g}, {}", a.scene, a.machine.name,
+                         a.machine.integrator_constant_label(), a.beta, a.run_mode())));
   std::map<std::string, std::string> driver;  // net → graph node
   for (const auto& amp : c.amplifiers) {
     driver[amp.out] = amp.name;

@@ -25,8 +25,8 @@ std::string header(const Allocation& a) {
   const MachineProfile& m = a.machine;
   std::string text = fmt::format("patch {} on {}{}\n", a.scene, m.name, m.description.empty() ? "" : ": " + m.description);
   text += fit_summary(a) + "\n";
-  text += fmt::format("k0 switch: {} (k0 = {}/s); β = {}: machine time = β · real time\n",
-                      m.integrator_constant_label(), format_number(m.integrator_constant), format_number(a.beta));
+  text += fmt::format("k0 switch: {} (k0 = {}/s); β = {:.6g}: machine time = β · real time\n",
+                      m.integrator_constant_label(), format_number(m.integrator_constant), a.beta);
   text += fmt::format("mode: {}; 1 MU = {} V; every amplifier inverts\n", a.run_mode(), format_number(m.unit_volts));
   return text;
 }

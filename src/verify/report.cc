@@ -41,7 +41,7 @@ std::string impact_rows(const VerifyResult& r) {
 }  // namespace
 
 std::string to_table(const VerifyResult& r) {
-  std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {}\n\n",
+  std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {:.6g}\n\n",
                               r.scene, level_name(r.level), 100 * r.tolerance, r.beta);
   if (r.deck_scaling != "generated")
     t += fmt::format("deck: {}; read back as level {}, {} scaling\n\n",
