@@ -21,9 +21,22 @@ double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
 
 }  // namespace
 
-void LinearProgram::Deleter::operator()(glp_prob* p) const { glp_delete_prob(p); }
+namespace {
+// GLPK keeps an environment per thread, made by its first call there and never
+// freed by itself: a pool thread that solved a scaling would leak it at its end.
+// The last problem of a thread frees it; the next call makes a new one.
+thread_local int live_problems = 0;
+}  // namespace
 
-LinearProgram::LinearProgram() : p_(glp_create_prob()) { glp_term_out(GLP_OFF); }
+void LinearProgram::Deleter::operator()(glp_prob* p) const {
+  glp_delete_prob(p);
+  if (--live_problems == 0) glp_free_env();
+}
+
+LinearProgram::LinearProgram() : p_(glp_create_prob()) {
+  ++live_problems;
+  glp_term_out(GLP_OFF);
+}
 LinearProgram::~LinearProgram() = default;
 LinearProgram::LinearProgram(LinearProgram&&) noexcept = default;
 LinearProgram& LinearProgram::operator=(LinearProgram&&) noexcept = default;
