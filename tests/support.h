@@ -2,9 +2,11 @@
 // Helpers shared by the tests: scenes built from text, example scene paths,
 // running the gearpatch binary.
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "common/atomic_file.h"
 #include "model/gear_model.h"
 #include "scene/scene_inputs.h"
 #include "solver/trajectory.h"
@@ -37,9 +39,13 @@ inline std::vector<std::string> example_scenes() {
   return {"bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c", "driven"};
 }
 
-inline Scene example_scene(const std::string& name) {
-  return load_scene(source_path("scenes/" + name + ".ini"));
-}
+/// The path of scenes/NAME.ini in the source tree.
+inline std::string scene_path(const std::string& name) { return source_path("scenes/" + name + ".ini"); }
+
+inline Scene example_scene(const std::string& name) { return load_scene(scene_path(name)); }
+
+/// A JSON file a command wrote, parsed.
+inline nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(read_file(path)); }
 
 /// A frictionless scene with the given [gear] lines appended to defaults.
 inline std::string gear_scene(const std::string& gear, const std::string& rest = "",

@@ -26,12 +26,8 @@ namespace {
 
 const std::string kBinary = GEARPATCH_BINARY;
 
-std::string scene(const std::string& name) { return testing::source_path("scenes/" + name + ".ini"); }
-
-nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(read_file(path)); }
-
 circuit::Circuit hardware_circuit(const std::string& name, const std::string& machine) {
-  const Scene s = load_scene(scene(name), machine);
+  const Scene s = load_scene(testing::scene_path(name), machine);
   return circuit::build_circuit(make_patch(scaling_input(s), {}), circuit::Level::hardware);
 }
 
@@ -72,13 +68,13 @@ TEST_CASE("quantiles interpolate between the sorted values", "[tolerance]") {
 TEST_CASE("the GNU Parallel route of a Monte Carlo gives the same merged result as the local pool", "[tolerance]") {
   testing::TempFolder dir("mc-parallel");
   std::string output;
-  const std::string mc = kBinary + " monte-carlo " + scene("bild5b") + " --machine the-analog-thing --autoscale -n 4 --seed 7";
+  const std::string mc = kBinary + " monte-carlo " + testing::scene_path("bild5b") + " --machine the-analog-thing --autoscale -n 4 --seed 7";
   REQUIRE(testing::run_command(mc + " -j 2 --json " + dir / "local.json", output) == 0);
   CHECK_THAT(output, Catch::Contains("4/4 done, 0 failed"));
   REQUIRE(testing::run_command(mc + " --job-list " + dir / "run", output) == 0);
   REQUIRE(testing::run_command("parallel --will-cite -S : --jobs 2 < " + dir / "run/jobs.txt", output) == 0);
   REQUIRE(testing::run_command(kBinary + " merge " + dir / "run" + " --json " + dir / "merged.json", output) == 0);
-  const nlohmann::json local = read_json(dir / "local.json"), merged = read_json(dir / "merged.json");
+  const nlohmann::json local = testing::read_json(dir / "local.json"), merged = testing::read_json(dir / "merged.json");
   REQUIRE(local.at("completed") == 4);
   CHECK(merged == local);
   // Four draws of four signals and their worst, each error a real one.
@@ -89,20 +85,20 @@ TEST_CASE("the GNU Parallel route of a Monte Carlo gives the same merged result 
     CHECK(s.at("p10").get<double>() > 0);
   }
   // Another seed draws other machines.
-  REQUIRE(testing::run_command(kBinary + " monte-carlo " + scene("bild5b") +
+  REQUIRE(testing::run_command(kBinary + " monte-carlo " + testing::scene_path("bild5b") +
                                    " --machine the-analog-thing --autoscale -n 4 --seed 8 -j 2 --json " + dir / "other.json",
                                output) == 0);
-  CHECK(read_json(dir / "other.json").at("signals") != local.at("signals"));
+  CHECK(testing::read_json(dir / "other.json").at("signals") != local.at("signals"));
 }
 
 TEST_CASE("a Monte Carlo draw that cannot run is counted and named", "[tolerance]") {
   testing::TempFolder dir("mc-failed");
   std::string output;
-  CHECK(testing::run_command(kBinary + " monte-carlo " + scene("bild5b") +
+  CHECK(testing::run_command(kBinary + " monte-carlo " + testing::scene_path("bild5b") +
                                  " --machine the-analog-thing -n 2 -j 2 --timeout 0.000001 --json " + dir / "mc.json",
                              output) == 3);
   CHECK_THAT(output, Catch::Contains("2/2 done, 2 failed") && Catch::Contains("failed: draw 0 (seed"));
-  const nlohmann::json j = read_json(dir / "mc.json");
+  const nlohmann::json j = testing::read_json(dir / "mc.json");
   CHECK(j.at("completed") == 0);
   CHECK(j.at("failed").size() == 2);
 }
@@ -129,7 +125,7 @@ double ablated_error(const Scene& s, const verify::VerifyOptions& o, const toler
 TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[tolerance]") {
   const std::string name = GENERATE("bild5b", "bild6a", "bild6c");
   CAPTURE(name);
-  const Scene s = load_scene(scene(name), "the-analog-thing");
+  const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
   verify::VerifyOptions o;
   o.level = circuit::Level::hardware;
   o.autoscale = true;

@@ -50,8 +50,6 @@ mode_t mode_of(const std::string& path) {
 
 const std::string kBinary = GEARPATCH_BINARY;
 
-std::string scene(const std::string& name) { return testing::source_path("scenes/" + name + ".ini"); }
-
 }  // namespace
 
 TEST_CASE("outputs refuse FIFOs, directories and devices, and leave them as they were", "[common]") {
@@ -64,19 +62,19 @@ TEST_CASE("outputs refuse FIFOs, directories and devices, and leave them as they
   CHECK_THROWS_WITH(write_file_atomically(dir / "fifo", "x"), Catch::Contains("is a FIFO"));
 
   std::string output;
-  const std::string simulate = kBinary + " simulate " + scene("bild5a");
+  const std::string simulate = kBinary + " simulate " + testing::scene_path("bild5a");
   CHECK(testing::run_command(simulate + " --out " + dir / "fifo", output) == 2);
   CHECK_THAT(output, Catch::Contains("--out " + dir / "fifo" + ": is a FIFO"));
   CHECK(fs::is_fifo(dir / "fifo"));
   CHECK(testing::run_command(simulate + " --events " + dir / "folder", output) == 2);
   CHECK_THAT(output, Catch::Contains("--events " + dir / "folder" + ": is a directory"));
   CHECK(fs::is_directory(dir / "folder"));
-  CHECK(testing::run_command(kBinary + " settings " + scene("bild5a") + " -o " + dir / "fifo", output) == 2);
-  CHECK(testing::run_command(kBinary + " netlist " + scene("bild5a") + " -o " + dir / "folder", output) == 2);
+  CHECK(testing::run_command(kBinary + " settings " + testing::scene_path("bild5a") + " -o " + dir / "fifo", output) == 2);
+  CHECK(testing::run_command(kBinary + " netlist " + testing::scene_path("bild5a") + " -o " + dir / "folder", output) == 2);
   CHECK(testing::run_command(kBinary + " reduce " + testing::source_path("scenes/stages/drive_train.ini") + " --json " +
                                  dir / "fifo",
                              output) == 2);
-  CHECK(testing::run_command(kBinary + " bench " + scene("bild5a") + " --only level --json " + dir / "b.json" +
+  CHECK(testing::run_command(kBinary + " bench " + testing::scene_path("bild5a") + " --only level --json " + dir / "b.json" +
                                  " --markdown " + dir / "fifo",
                              output) == 2);
   CHECK_THAT(output, Catch::Contains("--markdown " + dir / "fifo" + ": is a FIFO") && !Catch::Contains("ngspice"));
@@ -171,13 +169,13 @@ TEST_CASE("a command whose later output fails leaves none of its outputs", "[com
   TestDir dir;
   std::string output;
   // simulate: --events into a missing folder is refused before the run; no --out CSV.
-  CHECK(testing::run_command(kBinary + " simulate " + scene("bild5a") + " --out " + dir / "a.csv" + " --events " +
+  CHECK(testing::run_command(kBinary + " simulate " + testing::scene_path("bild5a") + " --out " + dir / "a.csv" + " --events " +
                                  dir / "nope/e.csv",
                              output) == 2);
   CHECK_THAT(output, Catch::Contains("--events " + dir / "nope/e.csv" + ": folder"));
   CHECK(dir.listing() == "");
   // "-" writes through to stdout.
-  CHECK(testing::run_command(kBinary + " simulate " + scene("bild5a") + " --out - --events " + dir / "e.csv",
+  CHECK(testing::run_command(kBinary + " simulate " + testing::scene_path("bild5a") + " --out - --events " + dir / "e.csv",
                              output) == 0);
   CHECK_THAT(output, Catch::StartsWith("t,omega_p,omega_s,dphi,m0,event\n"));
   CHECK(dir.listing() == "e.csv ");
@@ -186,7 +184,7 @@ TEST_CASE("a command whose later output fails leaves none of its outputs", "[com
 TEST_CASE("verify checks its outputs before the run and keeps its verdict when the plot fails late", "[common]") {
   TestDir dir;
   std::string output;
-  const std::string verify = kBinary + " verify " + scene("bild5a");
+  const std::string verify = kBinary + " verify " + testing::scene_path("bild5a");
   // --keep-deck into a missing folder is a bad option, found before ngspice runs.
   CHECK(testing::run_command(verify + " --keep-deck " + dir / "nope/deck.cir", output) == 2);
   CHECK_THAT(output, Catch::Contains("--keep-deck " + dir / "nope/deck.cir" + ": folder"));

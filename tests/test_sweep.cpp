@@ -22,10 +22,6 @@ namespace {
 
 const std::string kBinary = GEARPATCH_BINARY;
 
-std::string scene(const std::string& name) { return testing::source_path("scenes/" + name + ".ini"); }
-
-nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(read_file(path)); }
-
 /// A PNG's signature: gnuplot drew an image, not an error page.
 bool is_png(const std::string& path) {
   return fs::exists(path) && fs::file_size(path) > 1000 && read_file(path).substr(1, 3) == "PNG";
@@ -55,7 +51,7 @@ TEST_CASE("a --set value list takes linear and logarithmic ranges, ends as writt
 }
 
 TEST_CASE("a swept value keeps its line in the scene, and a bad one is refused with it", "[sweep]") {
-  const std::string text = read_file(scene("bild5b"));
+  const std::string text = read_file(testing::scene_path("bild5b"));
   const Scene s = sweep::point_scene(text, "bild5b.ini", {{"gear.damping", "3"}, {"friction.bearing_primary", "0.1"}});
   CHECK(!s.restitution);
   CHECK(*s.damping == 3);
@@ -93,12 +89,12 @@ TEST_CASE("the pool runs every job; a failed one is counted and named, never los
 TEST_CASE("a sweep of k on bild5b achieves each k per impact and draws the overlay", "[sweep]") {
   testing::TempFolder dir("sweep-k");
   std::string output;
-  REQUIRE(testing::run_command(kBinary + " sweep " + scene("bild5b") + kSweep + " --jobs 2 --json " + dir / "k.json" +
+  REQUIRE(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + kSweep + " --jobs 2 --json " + dir / "k.json" +
                                    " --csv " + dir / "k.csv" + " --plot " + dir / "k.png" + " --figures-plot " +
                                    dir / "f.png",
                                output) == 0);
   CHECK_THAT(output, Catch::Contains("5/5 done, 0 failed"));
-  const nlohmann::json j = read_json(dir / "k.json");
+  const nlohmann::json j = testing::read_json(dir / "k.json");
   REQUIRE(j.at("points").size() == 5);
   for (const auto& p : j.at("points")) {
     const double k = std::stod(p.at("values").at("gear.restitution").get<std::string>());
@@ -121,9 +117,9 @@ TEST_CASE("a sweep of k on bild5b achieves each k per impact and draws the overl
 TEST_CASE("with --verify every point of the k sweep passes at the ideal level (ngspice)", "[sweep]") {
   testing::TempFolder dir("sweep-verify");
   std::string output;
-  REQUIRE(testing::run_command(kBinary + " sweep " + scene("bild5b") + kSweep + " --verify --json " + dir / "v.json",
+  REQUIRE(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + kSweep + " --verify --json " + dir / "v.json",
                                output) == 0);
-  const nlohmann::json j = read_json(dir / "v.json");
+  const nlohmann::json j = testing::read_json(dir / "v.json");
   REQUIRE(j.at("points").size() == 5);
   for (const auto& p : j.at("points")) {
     CHECK(p.at("verify").at("level") == "ideal");
@@ -135,10 +131,10 @@ TEST_CASE("with --verify every point of the k sweep passes at the ideal level (n
 TEST_CASE("--machine patches every point on that machine, also in the jobs of a run folder", "[sweep]") {
   testing::TempFolder dir("sweep-machine");
   std::string output;
-  const std::string sweep = kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5,1 --verify";
+  const std::string sweep = kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5,1 --verify";
   REQUIRE(testing::run_command(sweep + " --json " + dir / "generic.json", output) == 0);
   REQUIRE(testing::run_command(sweep + " --machine the-analog-thing --json " + dir / "that.json", output) == 0);
-  const nlohmann::json generic = read_json(dir / "generic.json"), that = read_json(dir / "that.json");
+  const nlohmann::json generic = testing::read_json(dir / "generic.json"), that = testing::read_json(dir / "that.json");
   REQUIRE(that.at("points").size() == 2);
   for (std::size_t i = 0; i < 2; ++i) {
     const auto& on_that = that.at("points")[i].at("verify");
@@ -148,11 +144,11 @@ TEST_CASE("--machine patches every point on that machine, also in the jobs of a 
     CHECK(on_that.at("beta").get<double>() * 1000 ==
           Approx(generic.at("points")[i].at("verify").at("beta").get<double>()).epsilon(1e-6));
   }
-  REQUIRE(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5 --machine classic" +
+  REQUIRE(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5 --machine classic" +
                                    " --job-list " + dir / "run",
                                output) == 0);
   CHECK_THAT(read_file(dir / "run/jobs.txt"), Catch::Contains("--machine classic"));
-  CHECK(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5 --machine no-such" +
+  CHECK(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5 --machine no-such" +
                                  " --json " + dir / "x.json",
                              output) == 2);
   CHECK(!fs::exists(dir / "x.json"));
@@ -161,7 +157,7 @@ TEST_CASE("--machine patches every point on that machine, also in the jobs of a 
 TEST_CASE("the GNU Parallel route gives the same merged result as the local run", "[sweep]") {
   testing::TempFolder dir("sweep-parallel");
   std::string output;
-  const std::string sweep = kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5,1 --set gear.stiffness=log:50:200:3";
+  const std::string sweep = kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5,1 --set gear.stiffness=log:50:200:3";
   REQUIRE(testing::run_command(sweep + " --json " + dir / "local.json", output) == 0);
   REQUIRE(testing::run_command(sweep + " --job-list " + dir / "run", output) == 0);
   CHECK(!fs::exists(dir / "run/results/0000.json"));
@@ -170,7 +166,7 @@ TEST_CASE("the GNU Parallel route gives the same merged result as the local run"
                                    dir / "run/jobs.txt",
                                output) == 0);
   REQUIRE(testing::run_command(kBinary + " merge " + dir / "run" + " --json " + dir / "merged.json", output) == 0);
-  const nlohmann::json local = read_json(dir / "local.json"), merged = read_json(dir / "merged.json");
+  const nlohmann::json local = testing::read_json(dir / "local.json"), merged = testing::read_json(dir / "merged.json");
   REQUIRE(local.at("points").size() == 6);
   CHECK(merged == local);
 }
@@ -179,13 +175,13 @@ TEST_CASE("a bad --set is refused with exit status 2 before anything runs or is 
   testing::TempFolder dir("sweep-bad");
   std::string output;
   const std::string outputs = " --json " + dir / "x.json" + " --plot " + dir / "x.png" + " --run-dir " + dir / "run";
-  CHECK(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.restitution=0.5,1.5" + outputs,
+  CHECK(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5,1.5" + outputs,
                              output) == 2);
   CHECK_THAT(output, Catch::Contains("bild5b.ini:") && Catch::Contains("gear.restitution = 1.5: must be in [0, 1]"));
-  CHECK(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.colour=1" + outputs, output) == 2);
+  CHECK(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.colour=1" + outputs, output) == 2);
   CHECK_THAT(output, Catch::Contains("gear.colour: unknown scene key"));
-  CHECK(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.stiffness=1:9" + outputs, output) == 2);
-  CHECK(testing::run_command(kBinary + " sweep " + scene("bild5b") + " --set gear.stiffness=-1 --job-list " +
+  CHECK(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.stiffness=1:9" + outputs, output) == 2);
+  CHECK(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.stiffness=-1 --job-list " +
                                  dir / "jobs",
                              output) == 2);
   CHECK_THAT(output, Catch::Contains("gear.stiffness = -1: must be > 0"));
@@ -199,7 +195,7 @@ TEST_CASE("the figures command redraws Bild 5a-c and 6a-c with the scenes' close
                                output) == 0);
   for (const std::string name : {"bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c"})
     CHECK(is_png(dir / ("fig/" + name + ".png")));
-  const nlohmann::json numbers = read_json(dir / "fig/figures.json");
+  const nlohmann::json numbers = testing::read_json(dir / "fig/figures.json");
   REQUIRE(numbers.size() == 6);
   for (const auto& f : numbers) {
     const Scene s = testing::example_scene(f.at("scene"));
