@@ -12,6 +12,7 @@
 #include "model/gear_model.h"
 #include "model/restitution.h"
 #include "solver/integrate.h"
+#include "input_error.h"
 #include "support.h"
 
 using namespace gearpatch;
@@ -26,14 +27,7 @@ void write_text(const std::string& path, const std::string& text) {
 }
 
 std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.ini");
-  } catch (const Error& e) {
-    CHECK(e.kind() == Error::Kind::input);
-    return e.what();
-  }
-  FAIL("no error for:\n" << text);
-  return "";
+  return testing::input_error([&] { parse_scene(text, "bad.ini"); }, text);
 }
 
 Trajectory run(const Scene& scene, SolverKind solver = SolverKind::exact, double tolerance = 1e-10) {

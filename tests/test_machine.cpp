@@ -8,6 +8,7 @@
 #include "common/error.h"
 #include "machine/machine_file.h"
 #include "scaling/patch.h"
+#include "input_error.h"
 #include "support.h"
 
 using namespace gearpatch;
@@ -15,14 +16,7 @@ using namespace gearpatch;
 namespace {
 
 std::string profile_error(const std::string& text) {
-  try {
-    parse_machine_profile(text, "my.ini");
-  } catch (const Error& e) {
-    CHECK(e.kind() == Error::Kind::input);
-    return e.what();
-  }
-  FAIL("no error for:\n" << text);
-  return "";
+  return testing::input_error([&] { parse_machine_profile(text, "my.ini"); }, text);
 }
 
 PatchOptions quick() {

@@ -6,6 +6,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "input_error.h"
 #include "support.h"
 
 using namespace gearpatch;
@@ -13,14 +14,7 @@ using gearpatch::testing::gear_scene;
 
 namespace {
 std::string error_of(const std::string& text) {
-  try {
-    parse_scene(text, "bad.ini");
-  } catch (const Error& e) {
-    CHECK(e.kind() == Error::Kind::input);
-    return e.what();
-  }
-  FAIL("no error for:\n" << text);
-  return "";
+  return testing::input_error([&] { parse_scene(text, "bad.ini"); }, text);
 }
 }  // namespace
 
