@@ -90,6 +90,28 @@ TEST_CASE("a step shifted within the time tolerance passes, a spike outside the 
   CHECK(!tube.fit(beside.t, beside.y).inside());
 }
 
+TEST_CASE("a curve a little early at the end of the run meets the reference's continuation", "[verify]") {
+  // A ramp falling until the end (free flight through the play): a circuit
+  // ahead by half the time tolerance reaches at t = run the value the
+  // reference has only after the run; holding the reference's last value
+  // read that lead as an error of 0.5·tolerance·run·slope.
+  const double slope = -4.0;
+  const Curve reference = sampled([](double t) { return -4.0 * t; }, 0, 1, 2000);
+  const Tube tube = tube_around(reference);
+  Curve early;
+  for (int i = 0; i <= 1500; ++i) {
+    const double t = kRun * i / 1500;
+    early.t.push_back(t);
+    early.y.push_back(slope * (t + 0.5 * kTolerance * kRun));
+  }
+  CHECK(tube.fit(early.t, early.y).inside());
+  CHECK(tube.ahead(kRun + 0.01) == Approx(slope * (kRun + 0.01)));
+  CHECK(tube.ahead(1.0) == tube.reference(1.0));
+  // Early by twice the time tolerance it still fails, at the end as everywhere.
+  for (std::size_t i = 0; i < early.t.size(); ++i) early.y[i] = slope * (early.t[i] + 2 * kTolerance * kRun);
+  CHECK(!tube.fit(early.t, early.y).inside());
+}
+
 TEST_CASE("the tube's edges widen at a jump and hug the curve elsewhere", "[verify]") {
   const Tube tube({0, 1, 1, 2}, {0, 0, 1, 1}, {0.1, 0.01});
   CHECK(tube.bounds(0.5) == std::pair(-0.01, 0.01));

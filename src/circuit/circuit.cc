@@ -116,8 +116,8 @@ class Builder {
       c_.weights[Setting::alpha_stage] = smallest;
     }
     if (patch_.dead_zone) c_.parameters.emplace_back(Setting::a, *patch_.dead_zone);
-    if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, patch_.delta1);
-    if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, patch_.delta2);
+    if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, contact_threshold(patch_.delta1));
+    if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, contact_threshold(patch_.delta2));
     // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
     const Maxima& m = patch_.maxima;
     const GearState& s0 = patch_.initial;
@@ -262,13 +262,13 @@ class Builder {
     // comparators): on the other side it would reach 2|s| and overload.
     amplifier("sum_cap_g", false, "cap_g_n",
               {{"kv", std::nullopt, 1, "damp_p"}, {"cap_r1_n", std::nullopt, 1, "damp_p"}},
-              "capped law: cap_g_n = -(s + q - relu(q - s)) while X' > delta1");
+              "capped law: cap_g_n = -(s + q - relu(q - s)) while damp_p (flanks touch forward)");
     block("cap_half_g", BlockKind::halfwave, {"cap_g_n", "cap_g_low", "cap_push_p"}, "",
           "capped law: cap_push_p = relu(s + q - relu(q - s)), the positive side's torque");
     inverter("inv_kv2", "kv_n", "kv2", "kv2 = s + q, for the negative side");
     amplifier("sum_cap_h", false, "cap_h",
               {{"kv2", std::nullopt, 1, "damp_n"}, {"cap_r2", std::nullopt, 1, "damp_n"}},
-              "capped law: cap_h = -(s + q) - relu(s - q) while X' < -delta1");
+              "capped law: cap_h = -(s + q) - relu(s - q) while damp_n (flanks touch backward)");
     block("cap_half_h", BlockKind::halfwave, {"cap_h", "cap_push_n", "cap_h_low"}, "",
           "capped law: cap_push_n = -relu(cap_h), the negative side's torque");
     amplifier("sum_cap_m", false, "m_n",
@@ -276,17 +276,43 @@ class Builder {
               "capped law: m_n = -M0/M0m");
   }
 
-  /// Two comparators that tell which flanks touch: <name>_p while X' > δ,
-  /// <name>_n while X' < −δ.
+  /// Two comparators that tell which flanks touch: <name>_p while the watched
+  /// signal exceeds δ (delta1, delta2), <name>_n while it is below −δ.
   void contact_comparators(const std::string& name, const std::string& offset, const std::string& what) {
-    if (!has_xp_inverted_) {
-      inverter("inv_xp", "xp", "xp_n", "xp_n = -xp");
-      has_xp_inverted_ = true;
-    }
-    block("cmp_" + name + "_p", BlockKind::comparator, {"xp", name + "_p"}, offset,
-          what + ": xp > " + offset);
-    block("cmp_" + name + "_n", BlockKind::comparator, {"xp_n", name + "_n"}, offset,
-          what + ": xp < -" + offset);
+    const std::string in = on_x() ? "x" : "xp", in_n = in + "_n";
+    if (inverted_.insert(in).second) inverter("inv_" + in, in, in_n, in_n + " = -" + in);
+    block("cmp_" + name + "_p", BlockKind::comparator, {in, name + "_p"}, offset,
+          what + ": " + in + " > " + offset);
+    block("cmp_" + name + "_n", BlockKind::comparator, {in_n, name + "_n"}, offset,
+          what + ": " + in + " < -" + offset);
+  }
+
+  /// Whether the contact comparators watch X against the dead zone's own
+  /// threshold instead of X' against δ. On hardware X' is zero all through the
+  /// play and δ must clear the trigger's hysteresis and the X' stage's offset,
+  /// so a comparator on it switched the damping on late and off early
+  /// (measured on classic: restitution 0.510 for 0.500 and dphi 4.37 % on
+  /// bild5b, the flanks parting at k = 0 and 7.7 % on bild5c; on X: 0.17 % and
+  /// 0.27 %). Not when alpha11 needs extra stages: the contact then spans under
+  /// a tenth of X's scale and the comparator resolves it better on X'
+  /// (backlash-wide and ratio-small failed on X). Nor at the ideal level, whose
+  /// comparator has no hysteresis and no offset: on X its smooth width costs
+  /// resolution (bild5b 0.12 % → 0.21 %, bild5c 0.017 % → 0.037 % in dphi).
+  bool on_x() const {
+    const Potentiometer* gain = patch_.find(Setting::alpha11);
+    return level_ == Level::hardware && patch_.dead_zone && gain && gain->stages == 0;
+  }
+
+  /// The comparators' threshold δ. On X: a plus twice the Schmitt trigger's
+  /// hysteresis h, so that it trips at a + 3h and releases at a + h, just
+  /// before the flanks part: released after them, an offset leaves d·Δφ̇ on in
+  /// free flight, where Δφ̇ is largest. Measured on the-analog-thing, bild5b,
+  /// dphi: centred at a 7.9 %, at a + h 4.3 %, at a + 2h 0.89 % (with
+  /// --autoscale 7.7 % → 3.7 %, and with gp_amp_xp's offset of the other
+  /// sign m0 11.2 % → 2.7 %); on classic a + 2h and a + h are alike (bild5b
+  /// 0.18 %, bild5c 0.28 %), a + 20h cost 3.9 % on bild5b. On X': the patch's δ.
+  double contact_threshold(double patch_delta) const {
+    return on_x() ? *patch_.dead_zone + 2 * c_.machine.comparator_hysteresis : patch_delta;
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
@@ -344,7 +370,7 @@ class Builder {
 
   const Patch& patch_;
   Level level_;
-  bool has_xp_inverted_ = false;
+  std::set<std::string> inverted_;  ///< the signals whose inverse the contact comparators have
   std::set<std::string> staged_;
   Circuit c_;
 };
@@ -369,7 +395,7 @@ bool Circuit::uses(BlockKind kind) const {
 double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e-3; }
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
-double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 10 : 1e-3; }
+double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 10 : 1e-2; }
 double lock_release(Level level) { return level == Level::ideal ? 1e-4 : 5e-3; }
 
 Circuit build_circuit(const Patch& patch, Level level) {

@@ -51,9 +51,13 @@ std::vector<Variant> variants(const circuit::Circuit& c) {
     return p.first == Setting::delta1 || p.first == Setting::delta2;
   });
   if (has_delta)
-    v.push_back(circuit_change("comparator offsets δ1, δ2 halved", [](circuit::Circuit& k) {
+    v.push_back(circuit_change("comparator offsets δ1, δ2 halved (their margin beyond a)", [](circuit::Circuit& k) {
+      // With backlash the contact comparators watch X against a + margin.
+      double a = 0;
+      for (const auto& [setting, value] : k.parameters)
+        if (setting == Setting::a) a = value;
       for (auto& [setting, value] : k.parameters)
-        if (setting == Setting::delta1 || setting == Setting::delta2) value /= 2;
+        if (setting == Setting::delta1 || setting == Setting::delta2) value = a + (value - a) / 2;
     }));
   v.push_back({"a four times finer ngspice step (tmax/4, reltol/10)", [](verify::VerifyOptions& o) {
                  o.transient.max_step_points *= 4;

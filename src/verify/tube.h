@@ -40,6 +40,8 @@ class Tube {
   TubeFit fit(const std::vector<double>& t, const std::vector<double>& y) const;
   /// The reference linearly interpolated, held outside its span; at a jump the value after it.
   double reference(double at) const;
+  /// The reference, and past its end its last segment continued (what range() sees there).
+  double ahead(double at) const;
   TubeWidth width() const { return width_; }
 
  private:
