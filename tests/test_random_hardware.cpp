@@ -13,6 +13,7 @@
 #include "scene/random_scene.h"
 #include "scene/scene.h"
 #include "spice/simulator.h"
+#include "support.h"
 #include "verify/verify.h"
 
 using namespace gearpatch;
@@ -80,4 +81,18 @@ TEST_CASE("random scenes at the hardware level on the classic machine at 2 %: ev
   }
   INFO(total << " of " << set.size() << " pass");
   CHECK(total >= 31);
+}
+
+TEST_CASE("zero backlash with self-locking holds the secondary at the hardware level on classic and generic",
+          "[random_hardware]") {
+  // The latch is reset at t = 0 (IC mode): left to the operating point it
+  // started closed on generic and braked the secondary from t = 0 (75 %).
+  const std::string machine = GENERATE("classic", "generic");
+  CAPTURE(machine);
+  const Scene s = load_scene(testing::source_path("scenes/extremes/lock-zero-backlash.ini"), machine);
+  const HardwareOutcome o = run_hardware(s);
+  INFO(o.message);
+  CHECK(o.ran);
+  CHECK_FALSE(o.retried);
+  CHECK(o.passed);
 }
