@@ -208,6 +208,7 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("hsw_tau", num(F::switch_tau));
   ctx.set("hlatch_vt", num(0.45 * vsat));  // as at the ideal level, on the triggers' +-vsat
   ctx.set("hlatch_vh", num(vsat));
+  ctx.set("hlatch_reset", num(2 * vsat));  // the control while reset: below vt - vh
   ctx.set("hsw_rdel", num(F::switch_rdel));
   ctx.set("hsw_cdel", num(F::switch_tau / F::switch_rdel));
   // Integrator: hold the summing junction at the op-amp's balance point.

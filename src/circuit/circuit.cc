@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <numbers>
 #include <set>
 
 #include "circuit/stribeck_generator.h"
@@ -345,7 +346,9 @@ class Builder {
       omit("blocks 16/17 self-locking: not self-locking");
       return;
     }
-    block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(lock_band(level_)),
+    const double lock_rate = patch_.k0 * patch_.find(Setting::alpha_lock)->coefficient;
+    const double band = lock_band(level_, patch_.machine.amplifier.bandwidth_hz, lock_rate);
+    block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(band),
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
     block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"}, "",
           "lock_below = min(clip, 0), lock_above = max(clip, 0)");
@@ -395,7 +398,14 @@ bool Circuit::uses(BlockKind kind) const {
 double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e-3; }
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
-double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 10 : 1e-2; }
+double lock_band(Level level, double gbw_hz, double loop_rate) {
+  if (level == Level::ideal) return friction_band(level) / 10;
+  // The limiter's closed-loop pole 2π·GBW/(1 + G) at least 1/tan 30° above
+  // the loop's crossover G·rate: G·(1 + G) <= tan 30°·2π·GBW/rate.
+  const double k = std::tan(std::numbers::pi / 6) * 2 * std::numbers::pi * gbw_hz / loop_rate;
+  const double gain = (std::sqrt(1 + 4 * k) - 1) / 2;
+  return std::max(friction_band(level), 1 / gain);
+}
 double lock_release(Level level) { return level == Level::ideal ? 1e-4 : 5e-3; }
 
 Circuit build_circuit(const Patch& patch, Level level) {

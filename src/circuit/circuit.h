@@ -104,12 +104,16 @@ double comparator_offset(Level level);
 /// characteristic (block 16) is one order of magnitude steeper at the ideal
 /// level (section 6 asks for two, but 1e-7 MU made ngspice abort a
 /// self-locking deck with "timestep too small" even under gear, 1e-6 MU
-/// finished it); on hardware it is 1e-2 MU (gain 100): a gain of 1e4 behind
-/// a 3 MHz op-amp left the integrator loop so little phase margin that it
-/// oscillated at about 2 kHz, and 1e-3 MU behind classic's 100 kHz
-/// amplifiers failed bild6c by 9.4 % in omega_s (1e-2 MU: 0.05 %).
+/// finished it). On hardware block 16 closes a loop through the secondary's
+/// integrator (rate k0·α_lock·n, 1/s, per MU of the limiter's output): its
+/// band is as narrow as that loop allows with 60° of phase margin against the
+/// limiter's own closed-loop bandwidth GBW/(1 + 1/band), and never narrower
+/// than block 14's. A gain of 1e4 behind a 3 MHz op-amp oscillated at about
+/// 2 kHz; on the classic machine (GBW 100 kHz, rate 10/s) the gain of 1000
+/// made random-1-031 run away (ngspice past 120 s, 0.5 GB of rawfile in 20 s):
+/// the rule gives 190 (band 5.3e-3 MU), which finishes in 2.5 s.
 double friction_band(Level level);
-double lock_band(Level level);
+double lock_band(Level level, double gbw_hz, double loop_rate);
 
 /// The secondary speed (MU) below which the self-locking latch lets go:
 /// beyond the comparators' smooth width (ideal) or hysteresis (hardware), so
