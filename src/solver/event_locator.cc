@@ -9,7 +9,8 @@ namespace gearpatch {
 namespace {
 
 /// Refines a root of f in [lo, hi] where f(lo) > 0 >= f(hi).
-double refine(const std::function<double(double)>& f, double lo, double hi, double flo, double fhi) {
+template <class F>
+double refine(const F& f, double lo, double hi, double flo, double fhi) {
   if (fhi == 0) return hi;
   std::uintmax_t iterations = 200;
   boost::math::tools::eps_tolerance<double> tolerance(std::numeric_limits<double>::digits - 3);
@@ -19,8 +20,8 @@ double refine(const std::function<double(double)>& f, double lo, double hi, doub
 
 /// The crossing time of a guard that is >= 0 at `lo` (or on its boundary at
 /// the segment start) and negative at `hi`.
-double crossing_time(const std::function<double(double)>& f, double lo, double hi, double flo,
-                     double fhi) {
+template <class F>
+double crossing_time(const F& f, double lo, double hi, double flo, double fhi) {
   if (flo > 0) return refine(f, lo, hi, flo, fhi);
   // On the boundary at the start of the mode: find where it moved inside.
   for (double width = 0.5 * (hi - lo); width > 0 && lo + width > lo; width *= 0.5) {

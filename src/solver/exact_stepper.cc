@@ -296,9 +296,8 @@ class ExactSegment : public Segment {
 class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
-                                 double t0, double horizon) override {
-    return std::make_unique<ExactSegment>(model.dynamics(mode, t0), model.guards(mode, t0), state,
-                                          t0, horizon);
+                                 double t0, double horizon, const std::vector<Guard>& guards) override {
+    return std::make_unique<ExactSegment>(model.dynamics(mode, t0), guards, state, t0, horizon);
   }
 };
 

@@ -247,9 +247,10 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     // A segment ends at the drive's next breakpoint too: the forcing changes there.
     const double breakpoint = model.parameters().next_breakpoint(t);
     const double horizon = std::min(spec.duration, breakpoint);
-    auto segment = stepper.start(model, mode, state, t, horizon);
+    const std::vector<Guard> guards = model.guards(mode, t);
+    auto segment = stepper.start(model, mode, state, t, horizon, guards);
     Crossing crossing = locate_first_crossing(
-        *segment, model.guards(mode, t), t, [&](double a, double b) {
+        *segment, guards, t, [&](double a, double b) {
           steps.count(b, model, mode);
           outputs.interval(a, b, mode, *segment);
           outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
