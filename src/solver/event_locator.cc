@@ -1,5 +1,6 @@
 #include "solver/event_locator.h"
 
+#include <boost/container/small_vector.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
@@ -35,7 +36,7 @@ double crossing_time(const F& f, double lo, double hi, double flo, double fhi) {
 
 Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guards, double t0,
                                const std::function<void(double, double)>& on_interval) {
-  std::vector<double> before(guards.size());
+  boost::container::small_vector<double, 10> before(guards.size());  // no heap per segment
   const GearState start = segment.state_at(t0);
   for (std::size_t i = 0; i < guards.size(); ++i) before[i] = guards[i].form.at(start, t0);
   double a = t0;

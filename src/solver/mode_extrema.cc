@@ -175,19 +175,19 @@ struct ModeExtrema::Search {
 
 void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
   const Powers& p = powers(f);
-  const Search up(*this, f, 1, peak, p), down(*this, f, -1, peak, p);
   if (kappa_ > 0) {
     // Both signs' first test at once: σ only flips the signs of f's values,
     // so one evaluation decides both (the common case: no new peak here).
-    const Values v = up.values(start_);
+    const Values v{f(start_.state), dot(f, start_.rate), dot(p.r2, start_.rate),
+                   dot(p.r3, start_.rate)};
     const Values negated{-v.g, -v.g1, -v.g2, -v.g3};
     const double span = end_.t - start_.t, reached = std::abs(peak.value);
     if (Search::bound_from(*this, v, span) <= reached &&
         Search::bound_from(*this, negated, span) <= reached)
       return;
   }
-  up.search(start_, end_);
-  down.search(start_, end_);
+  Search(*this, f, 1, peak, p).search(start_, end_);
+  Search(*this, f, -1, peak, p).search(start_, end_);
 }
 
 }  // namespace gearpatch
