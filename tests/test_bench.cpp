@@ -138,9 +138,9 @@ TEST_CASE("the sweep varies one knob at a time around the defaults", "[bench]") 
   const auto only = bench::select_knobs(knobs, {"reltol"});
   REQUIRE(only.size() == 4);
   CHECK(only.front().family == "default");
-  CHECK(bench::standard_tolerances().size() == 10);
+  CHECK(bench::standard_tolerances().size() == 12);
   CHECK(bench::standard_tolerances().front() == Approx(1e-3));
-  CHECK(bench::standard_tolerances().back() == Approx(1e-12));
+  CHECK(bench::standard_tolerances().back() == Approx(1e-14));
 }
 
 TEST_CASE("the scaled difference of two trajectories divides by each full scale", "[bench]") {

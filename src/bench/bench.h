@@ -41,7 +41,7 @@ std::vector<Knob> standard_knobs();
 /// The knobs of the named families only ("default" is always kept).
 std::vector<Knob> select_knobs(const std::vector<Knob>& knobs, const std::vector<std::string>& families);
 
-/// Tolerances of the adaptive reference solver: 1e-3, 1e-4, …, 1e-12.
+/// Tolerances of the adaptive reference solver: 1e-3, 1e-4, …, 1e-14.
 std::vector<double> standard_tolerances();
 
 /// One measured point of one scene.

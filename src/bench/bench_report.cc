@@ -314,7 +314,7 @@ std::vector<Series> panel_series(const BenchResult& r, const std::vector<Row>& r
   out.push_back(front);
 
   Series exact{"exact solver (error estimated)", "with points pt 7 ps 1.6 lc rgb 'black'", {}};
-  Series adaptive{"adaptive solver, tol 1e-3...1e-12", "with linespoints pt 6 lc rgb '#1f77b4'", {}};
+  Series adaptive{"adaptive solver, tol 1e-3...1e-14", "with linespoints pt 6 lc rgb '#1f77b4'", {}};
   for (const Row& x : rows) {
     if (!finite(x)) continue;
     if (x.family == "exact") exact.points.push_back({x.seconds, clamp_error(x.error), ""});
@@ -416,7 +416,7 @@ std::string plot_image(const BenchResult& r, const std::string& format) {
             "unset xlabel\nunset ylabel\nset yrange [0:1]\nset xrange [0:1]\nunset logscale xy\n"
             "plot NaN with lines lw 8 lc rgb '#c0c0c0' title 'Pareto front of the ngspice runs', "
             "NaN with points pt 7 ps 1.6 lc rgb 'black' title 'exact solver (error estimated)', "
-            "NaN with linespoints pt 6 lc rgb '#1f77b4' title 'adaptive solver, tolerance 1e-3 ... 1e-12', "
+            "NaN with linespoints pt 6 lc rgb '#1f77b4' title 'adaptive solver, tolerance 1e-3 ... 1e-14', "
             "NaN with linespoints pt 5 lc rgb '#ff7f0e' title 'ngspice max step T/500 ... T/16000', "
             "NaN with linespoints pt 9 lc rgb '#2ca02c' title 'ngspice reltol 1e-3 ... 1e-9', "
             "NaN with linespoints pt 11 lc rgb '#9467bd' title 'ngspice method trap, gear', "

@@ -75,7 +75,7 @@ int run_bench(const std::vector<std::string>& args) {
           "usage: gearpatch bench [SCENE ...] [options]\n\n"
           "Measures every knob that trades speed for accuracy on each scene (default:\n"
           "scenes/*.ini) against the exact reference model:\n"
-          "  reference solvers  exact, and adaptive at tolerances 1e-3 ... 1e-12 (time per run,\n"
+          "  reference solvers  exact, and adaptive at tolerances 1e-3 ... 1e-14 (time per run,\n"
           "                     repeated until --min-time, median of --repeat)\n"
           "  ngspice            verify's default (--quality normal), then one knob at a time:\n"
           "                     max step T/500, 2000, 4000, 16000; reltol 1e-3, 1e-5, 1e-7,\n"

@@ -91,7 +91,9 @@ void GearModel::capped_guards(const Mode& m, std::vector<Guard>& g) const {
 
 GearState GearModel::derivative(const Mode& m, const GearState& s, double t) const {
   const ModeDynamics d = dynamics(m, t);
-  const double m0 = torque(m, s);
+  // torque(m, s), without a second dynamics()
+  const double m0 = d.coupled ? LinearForm{d.damping, -d.damping, d.stiffness, -d.stiffness * d.offset}(s)
+                              : 0.0;
   // The motor line and viscous friction: torques proportional to each shaft's speed.
   // Stribeck bearings slide against less than their break-away level.
   const double feedback_p = p_.primary_speed_feedback() * s.omega_p -

@@ -62,7 +62,7 @@ class AdaptiveStepper : public Stepper {
  public:
   explicit AdaptiveStepper(double tolerance) : tolerance_(tolerance) {}
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
-                                 double t0, double horizon) override {
+                                 double t0, double horizon, const std::vector<Guard>&) override {
     return std::make_unique<AdaptiveSegment>(model, mode, state, t0, horizon, tolerance_);
   }
 

@@ -1,5 +1,6 @@
 #include "solver/event_locator.h"
 
+#include <boost/container/small_vector.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
@@ -9,7 +10,8 @@ namespace gearpatch {
 namespace {
 
 /// Refines a root of f in [lo, hi] where f(lo) > 0 >= f(hi).
-double refine(const std::function<double(double)>& f, double lo, double hi, double flo, double fhi) {
+template <class F>
+double refine(const F& f, double lo, double hi, double flo, double fhi) {
   if (fhi == 0) return hi;
   std::uintmax_t iterations = 200;
   boost::math::tools::eps_tolerance<double> tolerance(std::numeric_limits<double>::digits - 3);
@@ -19,8 +21,8 @@ double refine(const std::function<double(double)>& f, double lo, double hi, doub
 
 /// The crossing time of a guard that is >= 0 at `lo` (or on its boundary at
 /// the segment start) and negative at `hi`.
-double crossing_time(const std::function<double(double)>& f, double lo, double hi, double flo,
-                     double fhi) {
+template <class F>
+double crossing_time(const F& f, double lo, double hi, double flo, double fhi) {
   if (flo > 0) return refine(f, lo, hi, flo, fhi);
   // On the boundary at the start of the mode: find where it moved inside.
   for (double width = 0.5 * (hi - lo); width > 0 && lo + width > lo; width *= 0.5) {
@@ -34,7 +36,7 @@ double crossing_time(const std::function<double(double)>& f, double lo, double h
 
 Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guards, double t0,
                                const std::function<void(double, double)>& on_interval) {
-  std::vector<double> before(guards.size());
+  boost::container::small_vector<double, 10> before(guards.size());  // no heap per segment
   const GearState start = segment.state_at(t0);
   for (std::size_t i = 0; i < guards.size(); ++i) before[i] = guards[i].form.at(start, t0);
   double a = t0;

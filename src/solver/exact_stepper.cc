@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <array>
+#include <boost/container/small_vector.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <cstdint>
@@ -21,7 +22,7 @@ namespace {
 /// The intervals it hands the event locator are chosen so that a sign check
 /// at their ends cannot miss a guard crossing: in free flight every guard is
 /// monotone on both sides of the vertex; in contact an interval is at most
-/// 1/16 of a period (when not oscillating: a quarter of the fastest decay
+/// 1/8 of a period (when not oscillating: a quarter of the fastest decay
 /// time, doubled at each step) and ends at the first local minimum of any
 /// guard that might reach zero, and stretches where no guard can reach zero
 /// are passed in one interval.
@@ -287,7 +288,8 @@ class ExactSegment : public Segment {
   static constexpr int max_turns = 4;
   std::array<double, max_turns> turns_{};
   int turn_count_ = 0;
-  std::vector<Shape> shapes_;
+  /// A mode has at most nine guards: no heap per segment.
+  boost::container::small_vector<Shape, 10> shapes_;
   Wave wave_;  ///< at end_
   mutable double cached_tau_ = std::numeric_limits<double>::quiet_NaN();
   mutable ForcedOscillator::Values cached_;
@@ -296,9 +298,8 @@ class ExactSegment : public Segment {
 class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
-                                 double t0, double horizon) override {
-    return std::make_unique<ExactSegment>(model.dynamics(mode, t0), model.guards(mode, t0), state,
-                                          t0, horizon);
+                                 double t0, double horizon, const std::vector<Guard>& guards) override {
+    return std::make_unique<ExactSegment>(model.dynamics(mode, t0), guards, state, t0, horizon);
   }
 };
 

@@ -90,7 +90,8 @@ void ForcedOscillator::evaluate(double t, Values& x) const {
 
 double ForcedOscillator::sampling_step() const {
   if (kappa_ == 0) return 0;
-  if (disc_ > 0) return 2 * std::numbers::pi / std::sqrt(disc_) / 16;
+  // Shorter than half a period, so g'' changes sign on a step at most once.
+  if (disc_ > 0) return 2 * std::numbers::pi / std::sqrt(disc_) / 8;
   const double g = std::sqrt(-disc_);
   return 0.25 / (g - decay_);  // the faster of the two decays
 }

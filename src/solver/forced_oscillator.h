@@ -25,8 +25,11 @@ class ForcedOscillator {
   double kappa() const { return kappa_; }
   double delta() const { return delta_; }
 
-  /// A time step that samples every root of a + b·t + u-like terms: 1/16 of a
-  /// period when oscillating, a quarter of the fastest decay time otherwise; 0
+  /// A time step that samples every root of a + b·t + u-like terms: 1/8 of a
+  /// period when oscillating (any step under half a period would do: the
+  /// exact segment cuts each interval at the first minimum of a guard; 1/8
+  /// took the fewest instructions over the example scenes, against 1/4, 1/6,
+  /// 1/12, 1/16 and 0.45), a quarter of the fastest decay time otherwise; 0
   /// in free flight (where `vertex` gives the only turning point).
   double sampling_step() const;
   /// The time of u's extremum in free flight (negative if none ahead).

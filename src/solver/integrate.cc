@@ -138,7 +138,7 @@ class EventBudget {
 
 /// Keeps the number of solver steps (the intervals each mode is walked in)
 /// bounded the same way: a contact that keeps a guard within rounding of zero
-/// cannot be skipped and costs 16 steps per period for the rest of the run.
+/// cannot be skipped and costs 8 steps per period for the rest of the run.
 class StepBudget {
  public:
   explicit StepBudget(const RunSpec& spec)
@@ -161,7 +161,7 @@ class StepBudget {
           std::isfinite(needed) ? fmt::format("about {:.3g}", needed)
                                                  : std::string("unboundedly many"),
           spec_.max_steps,
-          d.coupled ? fmt::format("the contact oscillation (period {:.3g} s) is sampled 16 times "
+          d.coupled ? fmt::format("the contact oscillation (period {:.3g} s) is sampled 8 times "
                                   "a period while a guard stays within reach of zero; ",
                                   2 * std::numbers::pi / std::sqrt(weight * d.stiffness))
                     : std::string()));
@@ -193,7 +193,7 @@ class StepBudget {
   const double decay = d.damping > 0 ? 2 / (weight * d.damping) : INFINITY;
   throw Error::about_scene("", fmt::format(
       "the solver cannot step past t = {:.9g} s of the {:g} s run in mode {}: the contact "
-      "oscillates with a period of {:.3g} s{}, too short to sample (1/16 of a period per step) "
+      "oscillates with a period of {:.3g} s{}, too short to sample (1/8 of a period per step) "
       "on the time axis there, whose resolution is {:.3g} s; lower gear.stiffness{}, or shorten "
       "run.duration so that the period stays above about 1e-13 of the run",
       t, spec.duration, to_string(mode), period,
@@ -247,9 +247,10 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
     // A segment ends at the drive's next breakpoint too: the forcing changes there.
     const double breakpoint = model.parameters().next_breakpoint(t);
     const double horizon = std::min(spec.duration, breakpoint);
-    auto segment = stepper.start(model, mode, state, t, horizon);
+    const std::vector<Guard> guards = model.guards(mode, t);
+    auto segment = stepper.start(model, mode, state, t, horizon, guards);
     Crossing crossing = locate_first_crossing(
-        *segment, model.guards(mode, t), t, [&](double a, double b) {
+        *segment, guards, t, [&](double a, double b) {
           steps.count(b, model, mode);
           outputs.interval(a, b, mode, *segment);
           outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });

@@ -27,13 +27,23 @@ double root(F f, double lo, double hi, double flo, double fhi) {
 
 ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment& segment)
     : model_(model), mode_(mode), segment_(segment) {
-  const GearState zero{}, rest = model.derivative(mode, zero);
-  const GearState unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-  for (int j = 0; j < 3; ++j) {
-    const GearState d = model.derivative(mode, unit[j]);
-    columns_[j] = {d.omega_p - rest.omega_p, d.omega_s - rest.omega_s, d.dphi - rest.dphi};
-  }
+  const GearParameters& p = model.parameters();
+  affine_ = p.drive_profile.piecewise_constant() && !p.stribeck();
   const ModeDynamics d = model.dynamics(mode);
+  if (affine_) {  // GearModel::derivative's matrix, written out
+    const double damping = d.coupled ? d.damping : 0.0, stiffness = d.coupled ? d.stiffness : 0.0;
+    const double fp = p.primary_speed_feedback(), fs = p.viscous_secondary;
+    columns_[0] = {d.inv_p * (-fp - damping), d.inv_s * d.gain_s * damping, 1};
+    columns_[1] = {d.inv_p * damping, d.inv_s * (-d.gain_s * damping - fs), -1};
+    columns_[2] = {-d.inv_p * stiffness, d.inv_s * d.gain_s * stiffness, 0};
+  } else {  // differences of the derivative: a Stribeck shaft is not linear
+    const GearState zero{}, rest = model.derivative(mode, zero);
+    const GearState unit[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int j = 0; j < 3; ++j) {
+      const GearState x = model.derivative(mode, unit[j]);
+      columns_[j] = {x.omega_p - rest.omega_p, x.omega_s - rest.omega_s, x.dphi - rest.dphi};
+    }
+  }
   const double weight = d.inv_p + d.inv_s * d.gain_s;
   if (d.coupled && weight > 0) {
     kappa_ = weight * d.stiffness;
@@ -52,8 +62,36 @@ void ModeExtrema::walk(double a, double b) {
 
 ModeExtrema::Point ModeExtrema::at(double t) const {
   Point p{t, segment_.state_at(t), {}};
-  p.rate = model_.derivative(mode_, p.state, t);
+  if (!affine_) {
+    p.rate = model_.derivative(mode_, p.state, t);
+    return p;
+  }
+  if (!have_rest_) {
+    rest_ = model_.derivative(mode_, GearState{}, t);
+    have_rest_ = true;
+  }
+  const GearState& x = p.state;
+  auto row = [&](double GearState::*r) {
+    return rest_.*r + columns_[0].*r * x.omega_p + columns_[1].*r * x.omega_s + columns_[2].*r * x.dphi;
+  };
+  p.rate = {row(&GearState::omega_p), row(&GearState::omega_s), row(&GearState::dphi)};
   return p;
+}
+
+const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
+  auto same = [&](const LinearForm& g) {
+    return g.omega_p == f.omega_p && g.omega_s == f.omega_s && g.dphi == f.dphi;
+  };
+  for (int i = 0; i < power_count_; ++i)
+    if (same(powers_[i].f)) return powers_[i];
+  const auto times_matrix = [&](const LinearForm& r) {
+    return LinearForm{dot(r, columns_[0]), dot(r, columns_[1]), dot(r, columns_[2]), 0};
+  };
+  Powers& slot = powers_[power_count_ < max_powers ? power_count_++ : max_powers - 1];
+  slot.f = f;
+  slot.r2 = times_matrix(f);
+  slot.r3 = times_matrix(slot.r2);
+  return slot;
 }
 
 /// The search for the largest σ·f on [a, b] above the peak found so far.
@@ -62,16 +100,11 @@ struct ModeExtrema::Search {
   const LinearForm& f;
   double sign;
   Extremum& peak;
-  LinearForm r2{}, r3{};  ///< f's linear part times the mode's matrix, once and twice
+  const LinearForm& r2;  ///< f's linear part times the mode's matrix, once and twice
+  const LinearForm& r3;
 
-  Search(const ModeExtrema& m, const LinearForm& f, double sign, Extremum& peak)
-      : m(m), f(f), sign(sign), peak(peak) {
-    const auto times_matrix = [&](const LinearForm& r) {
-      return LinearForm{dot(r, m.columns_[0]), dot(r, m.columns_[1]), dot(r, m.columns_[2]), 0};
-    };
-    r2 = times_matrix(f);
-    r3 = times_matrix(r2);
-  }
+  Search(const ModeExtrema& m, const LinearForm& f, double sign, Extremum& peak, const Powers& powers)
+      : m(m), f(f), sign(sign), peak(peak), r2(powers.r2), r3(powers.r3) {}
 
   Values values(const Point& p) const {
     return {sign * f(p.state), sign * dot(f, p.rate), sign * dot(r2, p.rate), sign * dot(r3, p.rate)};
@@ -86,12 +119,16 @@ struct ModeExtrema::Search {
   /// bound on the free part, whose energy h'² + κ·h² never grows.
   double upper_bound(const Point& p, double end) const {
     if (!(m.kappa_ > 0)) return INFINITY;
-    const Values v = values(p);
+    return bound_from(m, values(p), end - p.t);
+  }
+
+  /// upper_bound from σ·f and its derivatives at a point, `span` ahead.
+  static double bound_from(const ModeExtrema& m, const Values& v, double span) {
     const double h1 = -(v.g3 + m.delta_ * v.g2) / m.kappa_;
     const double h = -(v.g2 + m.delta_ * h1) / m.kappa_;
     const double line = v.g - h, slope = v.g1 - h1;
     const double radius = std::sqrt(h * h + h1 * h1 / m.kappa_);
-    const double bound = std::max(line, line + slope * (end - p.t)) + radius;
+    const double bound = std::max(line, line + slope * span) + radius;
     // Within rounding of the peak found: nothing to gain there.
     return bound - 1e-12 * (std::abs(line) + radius);
   }
@@ -137,8 +174,20 @@ struct ModeExtrema::Search {
 };
 
 void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
-  Search(*this, f, 1, peak).search(start_, end_);
-  Search(*this, f, -1, peak).search(start_, end_);
+  const Powers& p = powers(f);
+  if (kappa_ > 0) {
+    // Both signs' first test at once: σ only flips the signs of f's values,
+    // so one evaluation decides both (the common case: no new peak here).
+    const Values v{f(start_.state), dot(f, start_.rate), dot(p.r2, start_.rate),
+                   dot(p.r3, start_.rate)};
+    const Values negated{-v.g, -v.g1, -v.g2, -v.g3};
+    const double span = end_.t - start_.t, reached = std::abs(peak.value);
+    if (Search::bound_from(*this, v, span) <= reached &&
+        Search::bound_from(*this, negated, span) <= reached)
+      return;
+  }
+  Search(*this, f, 1, peak, p).search(start_, end_);
+  Search(*this, f, -1, peak, p).search(start_, end_);
 }
 
 }  // namespace gearpatch

@@ -40,14 +40,28 @@ class ModeExtrema {
     double g, g1, g2, g3;
   };
   struct Search;
+  /// A form's linear part times the mode's matrix, once and twice: the same
+  /// for every interval of the segment, so worked out once per form.
+  struct Powers {
+    LinearForm f, r2, r3;
+  };
 
   Point at(double t) const;
+  const Powers& powers(const LinearForm& f) const;
 
   const GearModel& model_;
   Mode mode_;
   const Segment& segment_;
   Point start_, end_;  ///< at a and b
   GearState columns_[3];  ///< the linear part of the mode's derivative, column by column
+  /// The derivative is rest + columns·state (the forcing constant in the mode:
+  /// no ramp, no Stribeck), rest taken at the first point asked for.
+  bool affine_ = false;
+  mutable bool have_rest_ = false;
+  mutable GearState rest_{};
+  static constexpr int max_powers = 6;
+  mutable Powers powers_[max_powers];
+  mutable int power_count_ = 0;
   double kappa_ = 0, delta_ = 0, quarter_ = 0;
 };
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <memory>
+#include <vector>
 
 #include "model/gear_model.h"
 
@@ -21,8 +22,10 @@ class Segment {
 class Stepper {
  public:
   virtual ~Stepper() = default;
+  /// `guards` are model.guards(mode, t0), computed once by the caller.
   virtual std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode,
-                                         const GearState& state, double t0, double horizon) = 0;
+                                         const GearState& state, double t0, double horizon,
+                                         const std::vector<Guard>& guards) = 0;
 };
 
 /// Closed-form solution of each mode: exact to rounding.

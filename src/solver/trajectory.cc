@@ -53,7 +53,10 @@ void TrajectoryRecorder::event(const EventRecord& e) {
 }
 
 void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Segment& segment) {
-  if (!extrema_) extrema_.emplace(model_, mode, segment);
+  if (!extrema_) {
+    extrema_.emplace(model_, mode, segment);
+    torque_ = model_.torque_form(mode);
+  }
   ModeExtrema& extrema = *extrema_;
   extrema.walk(a, b);
   SignalPeaks& run = out_.peaks;
@@ -71,13 +74,13 @@ void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Se
   }
   if (!in_contact_) {
     extrema.raise(twist, run.dphi);
-    if (mode.contact != Contact::free) extrema.raise(model_.torque_form(mode), run.m0);
+    if (mode.contact != Contact::free) extrema.raise(torque_, run.m0);
     return;
   }
   // The contact's peaks over this interval are the run's there too.
   ContactRecord& c = out_.contacts.back();
   extrema.raise(twist, c.twist);
-  extrema.raise(model_.torque_form(mode), c.torque);
+  extrema.raise(torque_, c.torque);
   raise(run.dphi, c.twist);
   raise(run.m0, c.torque);
   c.end = b;

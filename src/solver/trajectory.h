@@ -100,6 +100,7 @@ class TrajectoryRecorder : public Observer {
   std::size_t max_event_samples_;
   bool in_contact_ = false;
   std::optional<ModeExtrema> extrema_;  ///< of the segment being walked; reset at each event
+  LinearForm torque_;                   ///< M0 in the mode of extrema_
 };
 
 }  // namespace gearpatch
