@@ -369,7 +369,7 @@ bool Circuit::uses(BlockKind kind) const {
 double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e-3; }
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
-double lock_band(Level level) { return level == Level::ideal ? friction_band(level) / 10 : 1e-3; }
+double lock_band(Level level) { return level == Level::ideal ? friction_band(level) : 1e-3; }
 double lock_release(Level level) { return level == Level::ideal ? 1e-4 : 5e-3; }
 
 Circuit build_circuit(const Patch& patch, Level level) {
