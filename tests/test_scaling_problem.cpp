@@ -294,12 +294,16 @@ TEST_CASE("--autoscale: the self-locking catch sinks the secondary at most 0.1 %
   CHECK(run.peaks->catch_speed == Approx(12.98).epsilon(1e-3));
   PatchOptions o;
   o.autoscale = true;
+  o.lock_catch = true;  // the ideal level's
   const Patch patch = make_patch(in, o, run);
   const double v = run.peaks->catch_speed, a = 10 * patch.k0 * patch.beta * patch.maxima.speed_secondary;
   const double overshoot = in.gear.stiffness * v * v / (2 * a);
   CHECK(overshoot <= lock_catch_error * patch.maxima.torque * (1 + 1e-3));
   CHECK_THAT(patch.fixed_by.at("beta"), Catch::Contains("self-locking catch"));
-  // Without --autoscale the constraint is not posed (no simulated catch speed).
+  // Not posed for the hardware level, nor without --autoscale (no simulated catch speed).
+  o.lock_catch = false;
+  CHECK_THAT(make_patch(in, o, run).fixed_by.at("beta"), !Catch::Contains("catch"));
+  o.lock_catch = true;
   o.autoscale = false;
   CHECK_THAT(make_patch(in, o).fixed_by.at("beta"), !Catch::Contains("catch"));
 }

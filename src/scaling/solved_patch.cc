@@ -137,7 +137,7 @@ void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* ru
   // The self-locking catch: under --autoscale the fastest secondary the
   // reference's lock stops (none: no catch to bound), else the φ̇s bound.
   std::optional<double> catch_speed;
-  if (patch.autoscaled) catch_speed = run->peaks->lock_stops ? run->peaks->catch_speed : 0.0;
+  if (patch.autoscaled && o.lock_catch) catch_speed = run->peaks->lock_stops ? run->peaks->catch_speed : 0.0;
   auto solved = [&]() {
     if (!patch.autoscaled) return solve_over_k0(s, bounds, o, std::nullopt);
     try {
