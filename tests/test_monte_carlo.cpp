@@ -158,3 +158,28 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
   CHECK(as_is <= 2 * b.predicted.at(b.worst_signal));
   CHECK(as_is >= 0.4 * b.predicted.at(b.worst_signal));
 }
+
+TEST_CASE("every example scene on the-analog-thing passes at the hardware level or errs within its predicted budget",
+          "[tolerance]") {
+  const std::string name = GENERATE("bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c", "driven");
+  CAPTURE(name);
+  const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
+  verify::VerifyOptions o;
+  o.level = circuit::Level::hardware;
+  const tolerance::ErrorBudget b = tolerance::error_budget(s, o, 2);
+  REQUIRE(b.failed.empty());
+  // The deck as the profile gives it: every offset 1 mV, its sign by the amplifier's name.
+  const tolerance::Variant as_given{"as the profile gives it", [](verify::VerifyOptions&) {}};
+  const auto runs = tolerance::run_variants(s, o, {as_given}, 1, "the-analog-thing");
+  REQUIRE(runs[0].result);
+  const verify::VerifyResult& r = *runs[0].result;
+  bool within = true;
+  for (const auto& [signal, error] : tolerance::signal_errors(r)) {
+    CAPTURE(to_string(signal), error, b.predicted.at(signal));
+    within = within && error <= b.predicted.at(signal);
+  }
+  CAPTURE(r.failures);
+  // Before the shares measured how far a component moves the signal, bild5b
+  // failed here: omega_p 1.22 % against a budget of 1.01 % (Monte Carlo p90 1.68 %).
+  CHECK((r.passed || within));
+}
