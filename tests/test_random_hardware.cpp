@@ -1,7 +1,7 @@
 // The seeded random scenes (src/scene/random_scene.h) at the hardware level
 // on the classic machine, judged at 2 % of full scale: every deck runs to its
 // end in ngspice (no abort, no retry, no runaway output), and each feature
-// class passes at least as often as measured when this test was written
+// class passes at least 5 of 6 and the set at least 90 % (measured: all)
 // (README "Hardware level on the classic machine"; bench/random-scenes.sh
 // 1 42 --level hardware --machine classic --tolerance 2% measures the same).
 #include <catch2/catch.hpp>
@@ -67,12 +67,13 @@ TEST_CASE("random scenes at the hardware level on the classic machine at 2 %: ev
     CHECK_FALSE(outcomes[i].retried);
     if (outcomes[i].passed) ++passed[set[i].feature];
   }
-  // Measured on this set (of 6 each); the contact comparators (blocks 7/9)
-  // cost the classes with backlash most of their failures.
-  const std::map<SceneFeature, int> at_least{
-      {SceneFeature::frictionless, 1},  {SceneFeature::bearing_friction, 3}, {SceneFeature::tooth_friction, 4},
-      {SceneFeature::self_locking, 5},  {SceneFeature::driven, 6},           {SceneFeature::loaded, 6},
-      {SceneFeature::zero_backlash, 6}};
+  // The issue asks at least 90 % over the hidden classes. Measured on this
+  // set after the contact comparators moved to X (blocks 7/9) and the lock
+  // band followed its loop's phase margin: 42 of 42 (before: 30; the contact
+  // comparators alone cost the classes with backlash 11 of their failures).
+  // Every class must keep at least 5 of its 6.
+  std::map<SceneFeature, int> at_least;
+  for (const RandomScene& r : set) at_least[r.feature] = 5;
   int total = 0;
   for (const auto& [feature, n] : at_least) {
     INFO(to_string(feature) << ": " << passed[feature] << " of 6 pass");
@@ -80,7 +81,7 @@ TEST_CASE("random scenes at the hardware level on the classic machine at 2 %: ev
     total += passed[feature];
   }
   INFO(total << " of " << set.size() << " pass");
-  CHECK(total >= 31);
+  CHECK(total >= 38);  // 90 % of 42, rounded up
 }
 
 TEST_CASE("zero backlash with self-locking holds the secondary at the hardware level on classic and generic",
