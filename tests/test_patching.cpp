@@ -57,15 +57,16 @@ std::vector<std::string> example_and_drive_scenes() {
 }
 
 /// One amplifier input as both sides describe it: from node, amplifier,
-/// input, weight, potentiometer setting (name and value; "" and 1 for none)
-/// and the node that switches it.
-using Wire = std::tuple<std::string, std::string, int, int, std::string, double, std::string>;
+/// input, weight, potentiometer setting (name and value; "" and 1 for none),
+/// the node that switches it and the node that releases its latch ("" for none).
+using Wire = std::tuple<std::string, std::string, int, int, std::string, double, std::string, std::string>;
 
 /// The wires of an ideal deck, read back from its instance lines and subckts.
 std::set<Wire> deck_wires(const std::string& deck, double input_resistance) {
   std::map<std::string, double> params;
   std::map<std::string, std::pair<std::string, std::string>> pots;      // wiper → (from, setting)
   std::map<std::string, std::pair<std::string, std::string>> switches;  // after → (before, ctrl)
+  std::map<std::string, std::tuple<std::string, std::string, std::string>> latches;  // after → (before, set, reset)
   std::map<std::string, std::map<int, int>> weights;                    // subckt → input → weight
   std::vector<std::vector<std::string>> amplifiers;
   std::istringstream in(deck);
@@ -82,17 +83,24 @@ std::set<Wire> deck_wires(const std::string& deck, double input_resistance) {
     else if (std::regex_search(line, m, rin)) weights[subckt][std::stoi(m[1])] = static_cast<int>(std::lround(input_resistance / std::stod(m[2])));
     else if (w[0].rfind("Xpot_", 0) == 0) pots[w[2]] = {w[1], w.back().substr(9, w.back().size() - 10)};
     else if (w[0].rfind("Xsw_", 0) == 0) switches[w[2]] = {w[1], w[3]};
+    else if (w[0].rfind("Xlatch_", 0) == 0) latches[w[2]] = {w[1], w[3], w[4]};
     else if (w[0][0] == 'X' && w.back().rfind("gp_", 0) == 0 && weights.count(w.back())) amplifiers.push_back(w);
   }
   std::set<Wire> wires;
   for (const auto& w : amplifiers) {
     const std::string amp = w[0].substr(1);
     for (std::size_t k = 1; k + 2 < w.size(); ++k) {
-      std::string node = w[k], ctrl, setting;
+      std::string node = w[k], ctrl, setting, reset;
+      if (latches.count(node)) {  // in parallel with the switch: the same ends, set by the switch's control
+        const auto& [before, set, release] = latches.at(node);
+        CHECK(switches.count(node));
+        CHECK(switches[node] == std::make_pair(before, set));
+        reset = release;
+      }
       if (switches.count(node)) std::tie(node, ctrl) = switches.at(node);
       if (pots.count(node)) std::tie(node, setting) = pots.at(node);
       wires.emplace(node, amp, static_cast<int>(k), weights.at(w.back()).at(static_cast<int>(k)), setting,
-                    setting.empty() ? 1.0 : params.at(setting), ctrl);
+                    setting.empty() ? 1.0 : params.at(setting), ctrl, reset);
     }
   }
   return wires;
@@ -102,7 +110,7 @@ std::set<Wire> patch_wires(const Allocation& a) {
   std::set<Wire> wires;
   for (const Connection& c : a.connections)
     wires.emplace(c.from_node, c.to_instance, c.input, c.weight, c.potentiometer ? to_string(*c.potentiometer) : "",
-                  c.setting, c.switch_node);
+                  c.setting, c.switch_node, c.latch_reset_node);
   return wires;
 }
 
@@ -175,7 +183,9 @@ TEST_CASE("a potentiometer patched twice appears twice; a setting of 1 is a wire
 
 TEST_CASE("every connection of the patch is a connection of the deck and back, with the same weights, signs and "
           "settings", "[patching]") {
-  for (const auto& scene : example_and_drive_scenes())
+  std::vector<std::string> scenes = example_and_drive_scenes();
+  scenes.push_back("extremes/lock-zero-backlash");  // the lock latch
+  for (const auto& scene : scenes)
     for (const auto& machine : machines) {
       INFO(scene << " on " << machine);
       const Patch p = patch_of(scene, machine, circuit::Level::ideal);
@@ -189,6 +199,35 @@ TEST_CASE("every connection of the patch is a connection of the deck and back, w
       for (const InitialCondition& ic : a.initial_conditions)
         CHECK_THAT(deck, Catch::Contains(".ic v(" + ic.node + ")="));
     }
+}
+
+TEST_CASE("the zero-backlash lock's latches are placed: a comparator each, in parallel with the engagement switch",
+          "[patching]") {
+  for (const auto& machine : machines) {
+    INFO(machine);
+    const Allocation a = on("extremes/lock-zero-backlash", machine).allocation;
+    int latched = 0;
+    for (const Connection& c : a.connections) {
+      if (c.latch_label.empty()) continue;
+      ++latched;
+      CHECK(c.potentiometer == Setting::alpha_lock);
+      CHECK(!c.switch_label.empty());
+      CHECK(c.latch_label != c.switch_label);
+      const Element* latch = nullptr;
+      for (const Element& e : a.elements)
+        if (e.label == c.latch_label && e.kind == ElementKind::comparator) latch = &e;
+      REQUIRE(latch != nullptr);
+      CHECK(latch->feature == "self-locking");
+      CHECK_THAT(latch->role, Catch::Contains(c.switch_label));
+    }
+    CHECK(latched == 2);
+    int latch_comparators = 0;  // one of its own per latch
+    for (const Element& e : a.elements)
+      latch_comparators += e.kind == ElementKind::comparator && e.realises.rfind("latch_", 0) == 0;
+    CHECK(latch_comparators == 2);
+    // bild6c has backlash: no latch
+    for (const Connection& c : on("bild6c", machine).allocation.connections) CHECK(c.latch_label.empty());
+  }
 }
 
 TEST_CASE("a frictionless scene needs fewer elements than a self-locking one, and only what it needs", "[patching]") {

@@ -203,6 +203,7 @@ std::vector<Knob> select_knobs(const std::vector<Knob>& knobs, const std::vector
 std::array<double, 4> full_scales(const Scene& scene) {
   PatchOptions po;
   po.comparator_offset = circuit::comparator_offset(circuit::Level::ideal);
+  po.lock_catch = true;
   const circuit::Circuit c = circuit::build_circuit(make_patch(scene, po), circuit::Level::ideal);
   return {c.probes.at(Signal::omega_p).full_scale, c.probes.at(Signal::omega_s).full_scale,
           c.probes.at(Signal::dphi).full_scale, c.probes.at(Signal::m0).full_scale};

@@ -399,7 +399,7 @@ double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
 double lock_band(Level level, double gbw_hz, double loop_rate) {
-  if (level == Level::ideal) return friction_band(level) / 10;
+  if (level == Level::ideal) return friction_band(level);
   // The limiter's closed-loop pole 2π·GBW/(1 + G) at least 1/tan 30° above
   // the loop's crossover G·rate: G·(1 + G) <= tan 30°·2π·GBW/rate.
   const double k = std::tan(std::numbers::pi / 6) * 2 * std::numbers::pi * gbw_hz / loop_rate;

@@ -138,9 +138,9 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
                         format_number(m.unit_volts));
   text += fmt::format(
       "\n* Transient in machine time: {} s of real time x beta {}\n"
-      ".options method={} reltol={} abstol=1e-12 vntol=1e-9 chgtol=1e-16 itl4=100\n"
+      ".options method={} reltol={} abstol=1e-12 vntol=1e-9 chgtol={} itl4=100\n"
       ".tran {} {} 0 {}\n.end\n",
-      format_number(c.duration), format_number(c.beta), t.method, format_number(t.reltol),
+      format_number(c.duration), format_number(c.beta), t.method, format_number(t.reltol), format_number(t.chgtol),
       format_number(stop / t.output_points), format_number(stop), format_number(stop / t.max_step_points));
   return text;
 }

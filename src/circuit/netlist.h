@@ -14,6 +14,9 @@ struct TransientControl {
   double max_step_points = 500;  ///< tmax = machine run time / this
   double reltol = 1e-7;
   std::string method = "trap";   ///< trap or gear
+  /// ngspice's charge tolerance, C: tight for the 1 nF integrators of fast
+  /// machines (the ngspice notes); the retry takes ngspice's default 1e-14.
+  double chgtol = 1e-16;
 
   bool operator==(const TransientControl&) const = default;
 };

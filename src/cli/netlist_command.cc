@@ -46,6 +46,7 @@ int run_netlist(const std::vector<std::string>& args) {
   patch_options.check_peaks = patch_options.autoscale;
   if (paper_scaling(vm)) patch_options.method = ScalingMethod::paper;
   patch_options.comparator_offset = circuit::comparator_offset(level);
+  patch_options.lock_catch = level == circuit::Level::ideal;
   const circuit::Circuit c = with_scene(
       scene, [&] { return circuit::build_circuit(make_patch(scene, patch_options), level); });
   const circuit::TransientControl control = chosen_quality(vm);

@@ -223,12 +223,36 @@ class Allocator {
         wire.switch_label = label(in.switched_by);
         wire.switch_node = in.switched_by;
       }
+      if (!in.released_by.empty()) latch(wire, in);
       a_.connections.push_back(wire);
     }
     for (const auto& [weight, n] : needed)
       if (n > offered[weight])
         a_.input_overflows.push_back(fmt::format("{} ({}) needs {} inputs of weight {}, an element has {}",
                                                  target.label, amp.name, n, weight, offered[weight]));
+  }
+
+  /// The lock latch of a switched input (circuit.h: AmplifierInput): a
+  /// comparator of its own takes set − reset, with an inverter for −reset,
+  /// and holds by feeding its switch back (±1 MU of hysteresis, as the deck's
+  /// latch); its switch lies in parallel with the engagement switch.
+  void latch(Connection& wire, const circuit::AmplifierInput& in) {
+    const std::string name = "latch_" + wire.to_instance + "_" + std::to_string(wire.input);
+    const std::string feature = feature_of(name);
+    const bool use_summer = free_on_first(ElementKind::inverter) <= 0 && free_on_first(ElementKind::summer) > 0;
+    const Element& inv = take(use_summer ? ElementKind::summer : ElementKind::inverter, name + "_reset_n",
+                              fmt::format("−{} for the lock latch of {} input {}", in.released_by, wire.to_label,
+                                          wire.input), feature);
+    const std::string inverter = inv.label;
+    const Element& cmp =
+        take(ElementKind::comparator, name,
+             fmt::format("lock latch: input A from {} ({}, set), input B from {} (−{}, reset), its switch fed back "
+                         "for ±1 MU of hysteresis (closed above 1.45 MU, open below −0.55 MU), in parallel with the "
+                         "switch of {}", label(in.switched_by), in.switched_by, inverter, in.released_by,
+                         label(in.switched_by)),
+             feature);
+    wire.latch_label = cmp.label;
+    wire.latch_reset_node = in.released_by;
   }
 
   void initial_conditions() {

@@ -34,6 +34,9 @@ struct Connection {
   double setting = 1, loaded_setting = 1;
   std::string switch_label;              ///< the comparator whose switch it passes, or empty
   std::string switch_node;               ///< the circuit node that drives that switch
+  /// A latch in parallel with that switch (the zero-backlash lock): the
+  /// comparator whose switch it is, and the node that releases it.
+  std::string latch_label, latch_reset_node;
   std::string to_instance, to_label;     ///< the amplifier ("int_p") and its element ("INT1")
   int input = 0;                         ///< the circuit's input index, 1-based
   int weight = 1;

@@ -18,6 +18,7 @@ std::string through(const Connection& c) {
                 ? fmt::format(" → wire ({} = 1)", to_string(*c.potentiometer))
                 : fmt::format(" → {} ({} = {:.5f})", c.potentiometer_label, to_string(*c.potentiometer), c.setting);
   if (!c.switch_label.empty()) text += " → switch of " + c.switch_label;
+  if (!c.latch_label.empty()) text += " ∥ latch " + c.latch_label;
   return text;
 }
 
@@ -147,7 +148,7 @@ std::string to_json(const Allocation& a) {
                                 {"potentiometer", c.potentiometer ? to_string(*c.potentiometer) : ""},
                                 {"potentiometer_label", c.potentiometer_label}, {"setting", c.setting},
                                 {"loaded_setting", c.loaded_setting}, {"switch", c.switch_label},
-                                {"to", c.to_label}, {"to_instance", c.to_instance}, {"input", c.input},
+                                {"latch", c.latch_label}, {"to", c.to_label}, {"to_instance", c.to_instance}, {"input", c.input},
                                 {"weight", c.weight}});
   for (const Watch& w : a.watches)
     j["watch"].push_back({{"signal", w.signal}, {"at", w.label}, {"node", w.node}, {"full_scale", w.full_scale},

@@ -15,7 +15,7 @@ std::string signal_of(const std::string& node) {
       {"lock_steep_n", "−clip(φ̇s/band)"}, {"lock_below", "min(clip, 0)"}, {"lock_above", "max(clip, 0)"},
       {"damp_p", "Δφ' > δ1"},     {"damp_n", "Δφ' < −δ1"},      {"engaged_p", "Δφ' > δ2"},
       {"engaged_n", "Δφ' < −δ2"}, {"drive_n", "−Ma/Mam"},       {"ref_p", "+1 MU"},
-      {"ref_n", "−1 MU"},
+      {"ref_n", "−1 MU"},         {"stopped_bwd", "φ̇s > −δr"},  {"stopped_fwd", "φ̇s < δr"},
   };
   auto it = names.find(node);
   return it == names.end() ? node : it->second;
@@ -30,7 +30,8 @@ std::string feature_of(const std::string& instance) {
       {"abs_m", "tooth friction"},     {"inv_abs_m", "tooth friction"},  {"cmp_tooth_p", "tooth friction"},
       {"cmp_tooth_n", "tooth friction"}, {"alpha_tooth", "tooth friction"}, {"lock_char", "self-locking"},
       {"lock_half", "self-locking"},   {"cmp_engaged_p", "self-locking"}, {"cmp_engaged_n", "self-locking"},
-      {"alpha_lock", "self-locking"},  {"delta2", "self-locking"},       {"alpha_load", "load torque"},
+      {"alpha_lock", "self-locking"},  {"delta2", "self-locking"},       {"cmp_stopped_bwd", "self-locking"},
+      {"cmp_stopped_fwd", "self-locking"},       {"alpha_load", "load torque"},
       {"alpha2", "drive torque"},      {"dz", "backlash"},               {"a", "backlash"},
       {"alpha_speed_p", "speed feedback on the primary"}, {"alpha_viscous_s", "viscous friction on the secondary"},
       {"alpha_stribeck_p", "Stribeck friction"}, {"alpha_stribeck_s", "Stribeck friction"},
@@ -39,6 +40,7 @@ std::string feature_of(const std::string& instance) {
   if (it != features.end()) return it->second;
   // issue 14's blocks come in families named by prefix
   if (instance.rfind("strib_", 0) == 0) return "Stribeck friction";
+  if (instance.rfind("latch_", 0) == 0) return "self-locking";
   if (instance.rfind("cap_", 0) == 0 || instance.rfind("sum_cap_", 0) == 0) return "capped contact law";
   return "";
 }

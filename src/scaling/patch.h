@@ -55,6 +55,11 @@ struct PatchOptions {
   /// machine: it clears the comparators' hysteresis and the op-amps' offsets
   /// (circuit::comparator_offset(Level::hardware)); the ideal deck uses less.
   double comparator_offset = 5e-3;
+  /// With autoscale on a self-locking scene, pose the lock's catch
+  /// (scaling_problem.h): for the ideal level, where a larger β costs
+  /// nothing. On hardware the offsets drift over the longer machine run:
+  /// bild6c --autoscale at β 33 -> 279 went from 13 % to 16.6 % worst.
+  bool lock_catch = false;
 };
 
 /// The program for one scene: time scale, maxima, every potentiometer the

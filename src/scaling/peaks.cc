@@ -28,8 +28,10 @@ class PeakObserver : public Observer {
     // The self-locking reset stops the secondary at once (k_Re → ∞): the
     // reaction of blocks 16/17 is at its limit while the machine does that.
     if (p_.self_locking && e.kind != GuardKind::secondary_stops && e.before.omega_s != 0 &&
-        e.after.omega_s == 0)
+        e.after.omega_s == 0) {
       out_.lock_stops = true;
+      raise(out_.catch_speed, e.before.omega_s);
+    }
     update(mode_, e.before);
     update(e.mode_after, e.after);
     mode_ = e.mode_after;

@@ -25,6 +25,7 @@ struct PhysicalPeaks {
   double tooth = 0;                            ///< |M0| while the tooth friction acts
   double lock = 0;                             ///< reaction the self-locking holds against
   bool lock_stops = false;  ///< the self-locking stopped a moving secondary (at its limit M_Rem)
+  double catch_speed = 0;   ///< the largest |φ̇s| the self-locking stopped
   bool primary_moved = false, secondary_moved = false;
 };
 

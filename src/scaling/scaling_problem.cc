@@ -54,7 +54,7 @@ double dialled(const Coefficient& c, double k0) {
 }  // namespace
 
 ScalingProblem scaling_problem(const ScalingInput& s, const Maxima& bounds, double headroom,
-                               std::optional<double> beta) {
+                               std::optional<double> beta, std::optional<double> catch_speed) {
   ScalingProblem pr;
   pr.headroom = headroom;
   pr.weights = s.machine.weights;
@@ -68,8 +68,16 @@ ScalingProblem scaling_problem(const ScalingInput& s, const Maxima& bounds, doub
   }
   const GearParameters& p = s.gear;
   pr.beta_for_oscillation = contact_frequency(p) / (max_machine_frequency_per_k0 * pr.k0);
-  if (p.self_locking)
+  pr.amplifier_frequency = max_amplifier_frequency(s.machine);
+  pr.beta_for_bandwidth = contact_frequency(p) / pr.amplifier_frequency;
+  if (p.self_locking) {
     pr.beta_for_lock = 1 / (pr.amplifying_gain() * pr.k0 * lock_catch_fraction * s.duration);
+    if (catch_speed && *catch_speed > 0 && pr.bounds.count(Maximum::speed_secondary) &&
+        pr.bounds.count(Maximum::torque)) {
+      const double v = *catch_speed;
+      pr.lock_catch_torque = p.stiffness * v * v / (2 * pr.amplifying_gain() * pr.k0 * lock_catch_error);
+    }
+  }
   // Each coefficient's exponents, read off Table 1 itself by doubling one
   // maximum at a time: the formulas live in one place (table1.cc).
   const Table1 base = table1(s, bounds);
@@ -233,12 +241,26 @@ class Model {
       const int i = lp_.add_row(group, row, std::log(least) - relaxed(group), LinearProgram::infinity);
       meanings_.push_back({i, sentence, {}, 1, 0});
     };
-    floor(pr_.beta_for_oscillation, "beta.oscillation",
+    // Both limits on the contact oscillation are floors on β: only the stricter is a row.
+    const bool amplifiers = pr_.beta_for_bandwidth > pr_.beta_for_oscillation;
+    floor(amplifiers ? 0 : pr_.beta_for_oscillation, "beta.oscillation",
           fmt::format("the contact oscillation at {:g}·k0 rad/s of machine time, the fastest the machine "
                       "follows", max_machine_frequency_per_k0));
+    floor(amplifiers ? pr_.beta_for_bandwidth : 0, "beta.bandwidth",
+          fmt::format("the contact oscillation within the amplifiers' bandwidth and slew ({:.4g} rad/s of "
+                      "machine time)", pr_.amplifier_frequency));
     floor(pr_.beta_for_lock, "beta.lock",
           fmt::format("the self-locking reaction catching the load within {:g} % of the run",
                       100 * lock_catch_fraction));
+    if (pr_.lock_catch_torque > 0) {  // β·φ̇sm·M0m >= c·v²/(2·n_max·k0·share)
+      const std::string group = "lock.catch";
+      Terms row{{b_, 1}, {u_.at(Maximum::speed_secondary), 1}, {u_.at(Maximum::torque), 1}};
+      slack(row, group, 1);
+      const int i = lp_.add_row(group, row, std::log(pr_.lock_catch_torque) - relaxed(group), LinearProgram::infinity);
+      meanings_.push_back({i, fmt::format("the self-locking catch: the strongest lock reaction stops the secondary "
+                                          "within {:g} % of M0m as spring torque", 100 * lock_catch_error),
+                           {{Maximum::speed_secondary, 1}, {Maximum::torque, 1}}, 1, 0});
+    }
   }
 
   void add_coefficient(const CoefficientRequirement& c) {
@@ -445,6 +467,23 @@ Conflict describe(const ScalingProblem& pr, const std::string& group, double fac
         "the contact oscillation must stay within {:g}·k0 rad/s of machine time (β >= {:.4g}): β would have to "
         "be {}× smaller (a machine {}× faster, or a coupling {:.4g}× softer)",
         max_machine_frequency_per_k0, pr.beta_for_oscillation, f, f, factor * factor);
+  } else if (group == "beta.bandwidth") {
+    c.scene_key = "gear.stiffness";
+    c.sentence = fmt::format(
+        "the contact oscillation sqrt(c/Θ) must stay within what the machine's amplifiers follow, {:.4g} rad/s of "
+        "machine time (1 % of a radian of lag per amplifier at their gain-bandwidth, and their slew over a full "
+        "unit), so β >= {:.4g}: β would have to be {}× smaller (amplifiers {}× faster, or a coupling {:.4g}× "
+        "softer)",
+        pr.amplifier_frequency, pr.beta_for_bandwidth, f, f, factor * factor);
+  } else if (group == "lock.catch") {
+    c.scene_key = "friction.self_locking";
+    c.sentence = fmt::format(
+        "the self-locking catch must stop the secondary (peak speed {:.4g} rad/s) within {:g} % of M0m as spring "
+        "torque with the strongest lock reaction the machine dials (weight {:g}, α = 1), so β·φ̇sm·M0m must be at "
+        "least {:.4g}: it would have to be {}× smaller (a machine whose largest weight is {}× larger, or a secondary "
+        "{:.4g}× slower)",
+        pr.bounds.at(Maximum::speed_secondary), 100 * lock_catch_error, pr.amplifying_gain(), pr.lock_catch_torque,
+        f, f, std::sqrt(factor));
   } else if (group == "beta.lock") {
     c.scene_key = "friction.self_locking";
     c.sentence = fmt::format(

@@ -57,7 +57,14 @@ struct ScalingProblem {
   double k0 = 1;
   std::optional<double> fixed_beta;   ///< given by the scene or --beta
   double beta_for_oscillation = 0;    ///< β >= this: contact oscillation within the machine's speed
+  double beta_for_bandwidth = 0;      ///< β >= this: contact oscillation within the amplifiers' bandwidth and slew
+  double amplifier_frequency = 0;     ///< that limit, rad per machine second, for messages
   double beta_for_lock = 0;           ///< β >= this: the self-locking reaction catches in time
+  /// β·φ̇sm·M0m >= this (self-locking): the strongest lock reaction the machine
+  /// dials, a = n_max·k0·β·φ̇sm, stops a secondary at its peak speed v within
+  /// v²/(2a) of the flank; that overshoot, as spring torque c·v²/(2a), stays
+  /// within lock_catch_error of M0m (it holds as long as the lock does).
+  double lock_catch_torque = 0;
 
   double amplifying_gain() const;   ///< one stage: the largest weight, no potentiometer
   double attenuating_gain() const;  ///< one stage: α_min into the smallest weight
@@ -101,8 +108,12 @@ struct Conflict {
 Maxima peak_bounds(const ScalingInput& input);
 
 /// The problem of the scene from its a-priori (or simulated) peak bounds.
+/// `catch_speed`: the fastest secondary the self-locking stops, simulated
+/// (--autoscale); the catch constraint needs it. The a-priori φ̇s bound in its
+/// place was measured too strict (seed 1: β of random-1-024 1e4× larger,
+/// 41 → 39 pass), and at a-priori scales a real catch sinks far less deep.
 ScalingProblem scaling_problem(const ScalingInput& input, const Maxima& bounds, double headroom,
-                               std::optional<double> beta);
+                               std::optional<double> beta, std::optional<double> catch_speed = std::nullopt);
 
 /// Solves it lexicographically: largest worst-case signal level, then fewest
 /// extra stages, then highest signal levels in all, then largest settings,

@@ -38,12 +38,12 @@ Maxima simulated_bounds(const Maxima& a_priori, const PhysicalPeaks& x, std::vec
 /// taken only when the run in machine time, β·T, would not fit the machine's
 /// longest OP time: the nearest faster k0 that fits, else the fastest.
 std::pair<ScalingSolution, ScalingInput> solve_over_k0(const ScalingInput& s, const Maxima& bounds,
-                                                       const PatchOptions& o) {
+                                                       const PatchOptions& o, std::optional<double> catch_speed) {
   const std::optional<double> beta = o.beta ? o.beta : s.machine.time_scale;
   auto solve_at = [&](double k0) {
     ScalingInput in = s;
     in.machine.integrator_constant = k0;
-    auto solution = solve_or_explain(scaling_problem(in, bounds, o.headroom, beta));
+    auto solution = solve_or_explain(scaling_problem(in, bounds, o.headroom, beta, catch_speed));
     return std::pair<ScalingSolution, ScalingInput>(std::move(solution), std::move(in));
   };
   auto chosen = solve_at(s.machine.integrator_constant);
@@ -134,17 +134,21 @@ void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* ru
     patch.autoscaled = true;
     patch.notes.push_back("autoscale: the scaling is solved again with every simulated peak as the bound");
   }
+  // The self-locking catch: under --autoscale the fastest secondary the
+  // reference's lock stops (none: no catch to bound), else the φ̇s bound.
+  std::optional<double> catch_speed;
+  if (patch.autoscaled && o.lock_catch) catch_speed = run->peaks->lock_stops ? run->peaks->catch_speed : 0.0;
   auto solved = [&]() {
-    if (!patch.autoscaled) return solve_over_k0(s, bounds, o);
+    if (!patch.autoscaled) return solve_over_k0(s, bounds, o, std::nullopt);
     try {
-      return solve_over_k0(s, bounds, o);
+      return solve_over_k0(s, bounds, o, catch_speed);
     } catch (const Error& e) {  // never worse than without --autoscale: the a-priori bounds fit
       if (e.kind() != Error::Kind::input) throw;
       patch.notes.push_back(std::string("autoscale: the simulated peaks admit no scaling (") + e.what() +
                             "); solved with the a-priori bounds instead");
       patch.autoscaled = false;
       bounds = patch.a_priori;
-      return solve_over_k0(s, bounds, o);
+      return solve_over_k0(s, bounds, o, std::nullopt);
     }
   };
   auto [solution, in] = solved();

@@ -17,6 +17,13 @@ double comfortable_high(const MachineProfile& m) {
   return *std::max_element(m.weights.begin(), m.weights.end());
 }
 
+double max_amplifier_frequency(const MachineProfile& m) {
+  const double largest = *std::max_element(m.weights.begin(), m.weights.end());
+  const double by_bandwidth = amplifier_phase_lag * 2 * M_PI * m.amplifier.bandwidth_hz / (1 + largest);
+  const double by_slew = m.amplifier.slew_volts_per_second / m.unit_volts;
+  return std::min(by_bandwidth, by_slew);
+}
+
 namespace {
 
 std::vector<std::string> checks(const std::vector<IntegratorRate>& rates, double omega,
@@ -34,6 +41,12 @@ std::vector<std::string> checks(const std::vector<IntegratorRate>& rates, double
     w.push_back(fmt::format("the contact oscillation runs at {:.4g} rad/s of machine time at β = {:g}, "
                             "above the {:g} rad/s the machine follows (100·k0); raise β to {:.3g} "
                             "or more", omega / beta, beta, limit, omega / limit));
+  const double amplifiers = max_amplifier_frequency(m);
+  if (omega / beta > amplifiers)
+    w.push_back(fmt::format("the contact oscillation runs at {:.4g} rad/s of machine time at β = {:g}, "
+                            "above the {:.4g} rad/s the machine's amplifiers follow (bandwidth {:g} Hz, "
+                            "slew {:g} V/s); raise β to {:.3g} or more", omega / beta, beta, amplifiers,
+                            m.amplifier.bandwidth_hz, m.amplifier.slew_volts_per_second, omega / amplifiers));
   return w;
 }
 

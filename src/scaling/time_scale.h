@@ -27,6 +27,20 @@ inline constexpr double max_machine_frequency_per_k0 = 100.0;
 /// k_Re → ∞ stops it at once); β is raised until it does.
 inline constexpr double lock_catch_fraction = 1e-3;
 
+/// The fastest the machine's amplifiers follow, in rad per machine second:
+/// each computing amplifier (gain-bandwidth f_T, noise gain up to 1 + the
+/// largest weight) lags a swing at ω by about ω·(1 + n_max)/(2π·f_T); at most
+/// 1 % of a radian per amplifier keeps a contact oscillation's damping true
+/// over its cycles. Its slew, too, must carry a full-unit swing at ω.
+double max_amplifier_frequency(const MachineProfile& machine);
+inline constexpr double amplifier_phase_lag = 0.01;
+
+/// The share of M0m the self-locking catch may overshoot by as spring torque:
+/// a secondary caught by the lock sinks v²/(2a) into the flank and the spring
+/// holds that extra twist while the lock holds (measured: random-2-038 with
+/// --autoscale caught 6.9e-3 of M0m deep and failed by 0.76 % on φ̇p).
+inline constexpr double lock_catch_error = 1e-3;
+
 /// The time scale and why it was chosen.
 struct TimeScale {
   double beta = 1;

@@ -12,7 +12,8 @@ namespace gearpatch::tolerance {
 /// One component tolerance's share of each signal's error.
 struct ComponentShare {
   std::string component;           ///< "offset gp_amp_xp", "potentiometer resolution"
-  std::map<Signal, double> error;  ///< fraction of full scale
+  std::map<Signal, double> error;  ///< change of the signal's amplitude error, fraction of full scale
+  std::map<Signal, double> moved;  ///< how far it moves the signal itself (the prediction's share)
   double largest() const;
 };
 
@@ -22,13 +23,15 @@ struct ComponentShare {
 /// the root-sum-square of each tolerance's share. A share is measured by
 /// injecting that one imperfection at its RMS size into the perfect deck,
 /// with both signs when the profile's offsets take random signs, and taking
-/// the larger change of the signal's amplitude error.
+/// the larger distance the signal moves (against the perfect deck's, in
+/// verify's tube). The dominant component is the one whose share changes the
+/// signal's amplitude error most: what ablation (removing it) confirms.
 struct ErrorBudget {
   std::string scene, machine;
   double offset_rms_volts = 0;
   std::map<Signal, double> nominal;
   std::vector<ComponentShare> shares;  ///< largest first
-  std::map<Signal, double> predicted;  ///< nominal + RSS of the shares
+  std::map<Signal, double> predicted;  ///< nominal + RSS of the shares' `moved`
   Signal worst_signal{};
   std::string dominant;                ///< the share that weighs most in worst_signal's RSS
   std::vector<std::string> advice;     ///< what would shrink it
