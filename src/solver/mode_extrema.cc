@@ -106,12 +106,6 @@ const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
   return slot;
 }
 
-ModeExtrema::Values ModeExtrema::derivatives(const LinearForm& f, const Powers& p,
-                                             const Point& x) const {
-  return {f(x.state), dot(f, x.rate), dot(p.r2, x.rate) + dot(f, forcing_rate_),
-          dot(p.r3, x.rate) + dot(p.r2, forcing_rate_)};
-}
-
 /// The search for the largest σ·f on [a, b] above the peak found so far.
 struct ModeExtrema::Search {
   const ModeExtrema& m;
@@ -125,8 +119,12 @@ struct ModeExtrema::Search {
       : m(m), f(f), sign(sign), peak(peak), powers(powers), bend(sign * m.bend(f)) {}
 
   Values values(const Point& p) const {
-    const Values v = m.derivatives(f, powers, p);
-    return {sign * v.g, sign * v.g1, sign * v.g2, sign * v.g3};
+    double g2 = dot(powers.r2, p.rate), g3 = dot(powers.r3, p.rate);
+    if (m.forcing_rate_.omega_p != 0) {  // under a ramp x'' = A·x' + b1
+      g2 += dot(f, m.forcing_rate_);
+      g3 += dot(powers.r2, m.forcing_rate_);
+    }
+    return {sign * f(p.state), sign * dot(f, p.rate), sign * g2, sign * g3};
   }
 
   void consider(const Point& p) const {
@@ -218,7 +216,11 @@ void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
   if (kappa_ > 0) {
     // Both signs' first test at once: σ only flips the signs of f's values,
     // so one evaluation decides both (the common case: no new peak here).
-    const Values v = derivatives(f, p, start_);
+    Values v{f(start_.state), dot(f, start_.rate), dot(p.r2, start_.rate), dot(p.r3, start_.rate)};
+    if (forcing_rate_.omega_p != 0) {  // under a ramp x'' = A·x' + b1
+      v.g2 += dot(f, forcing_rate_);
+      v.g3 += dot(p.r2, forcing_rate_);
+    }
     const Values negated{-v.g, -v.g1, -v.g2, -v.g3};
     const double span = end_.t - start_.t, reached = std::abs(peak.value), c2 = bend(f);
     if (Search::bound_from(*this, v, span, c2) <= reached &&

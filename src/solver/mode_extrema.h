@@ -47,8 +47,6 @@ class ModeExtrema {
   };
 
   Point at(double t) const;
-  /// f's second and third derivative from the rate: x'' = A·x' + b1 under a ramp.
-  Values derivatives(const LinearForm& f, const Powers& p, const Point& x) const;
   /// The constant g'' of the form's polynomial part under a ramp (0 without one).
   double bend(const LinearForm& f) const { return bend_ * (f.omega_p + f.omega_s); }
   const Powers& powers(const LinearForm& f) const;
