@@ -1,6 +1,7 @@
 // Speed of the reference solvers: time per impact event of the exact solver,
 // and the adaptive solver on the same run at two tolerances; and the exact
-// solver on each example scene (per run, the output grid cut to the ends).
+// solver on each example scene (per run, the output grid cut to the ends);
+// and both solvers on scenes/drive/reversal.ini (a table drive).
 // Run: build/gearpatch_bench --benchmark_filter=Solver
 #include <benchmark/benchmark.h>
 
@@ -48,6 +49,13 @@ void SolverExactScene(benchmark::State& state, const char* name) {
   run_scene(state, scene, SolverKind::exact, 0);
 }
 
+/// A scene under scenes/drive/ on either solver: the torque reversal from a
+/// table runs in closed form too (each table corner an event).
+void SolverDrive(benchmark::State& state, const char* name, SolverKind solver, double tolerance) {
+  const Scene scene = load_scene(std::string(GEARPATCH_SOURCE_DIR) + "/scenes/drive/" + name + ".ini");
+  run_scene(state, scene, solver, tolerance);
+}
+
 }  // namespace
 
 BENCHMARK(SolverExact)->Unit(benchmark::kMillisecond);
@@ -60,4 +68,12 @@ BENCHMARK_CAPTURE(SolverExactScene, bild6a, "bild6a")->Unit(benchmark::kMicrosec
 BENCHMARK_CAPTURE(SolverExactScene, bild6b, "bild6b")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SolverExactScene, bild6c, "bild6c")->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SolverExactScene, driven, "driven")->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SolverDrive, reversal_exact, "reversal", SolverKind::exact, 0.0)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SolverDrive, reversal_adaptive_1e6, "reversal", SolverKind::adaptive, 1e-6)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SolverDrive, reversal_adaptive_1e10, "reversal", SolverKind::adaptive, 1e-10)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SolverDrive, reversal_adaptive_1e12, "reversal", SolverKind::adaptive, 1e-12)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

@@ -89,7 +89,7 @@ TEST_CASE("the Stribeck function generator follows 1 - exp(-x) at its stated bre
 TEST_CASE("verify says when its reference ran on the adaptive solver", "[drive][ngspice]") {
   auto ngspice = spice::make_batch_ngspice();
   CHECK(verify::to_table(verify::verify(drive_scene("startup"), {}, *ngspice))
-            .find("reference: adaptive solver (the exact solver integrates constant forcing only; "
+            .find("reference: adaptive solver (the exact solver integrates forcing linear in time only; "
                   "this scene has the motor line, viscous friction)") != std::string::npos);
   CHECK(verify::to_table(verify::verify(drive_scene("capped"), {}, *ngspice))
             .find("reference: adaptive") == std::string::npos);

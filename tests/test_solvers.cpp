@@ -165,7 +165,8 @@ TEST_CASE("the run's peaks from the closed form are the largest values a fine gr
   // The peak search prunes an interval by a bound built from the mode's
   // matrix (written out in ModeExtrema, with the motor line's and viscous
   // feedback); a wrong matrix would prune a real peak and report a smaller one.
-  for (const char* name : {"bild5b", "bild6b", "bild6c", "drive/startup", "drive/capped"}) {
+  for (const char* name : {"bild5b", "bild6b", "bild6c", "drive/startup", "drive/capped",
+                           "drive/reversal"}) {
     const Scene scene = load_scene(testing::scene_path(name));
     const GearModel model(gear_parameters(scene));
     RunSpec spec = run_spec(scene);

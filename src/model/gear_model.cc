@@ -40,6 +40,7 @@ ModeDynamics GearModel::dynamics(const Mode& m, double t) const {
   d.inv_p = m.primary == Shaft::held ? 0.0 : 1.0 / p_.inertia_primary;
   d.inv_s = m.secondary == Shaft::held ? 0.0 : 1.0 / p_.inertia_secondary;
   d.force_p = p_.drive_at(t) - p_.bearing_primary * direction(m.primary);
+  d.drive_rate = p_.drive_profile.empty() ? 0.0 : p_.drive_slope(t);
   d.force_s = -p_.load_torque - p_.bearing_secondary * direction(m.secondary);
   // (5.5): M0 − k_z·|M0|·sign φ̇s = M0·(1 − k_z·sign M0·sign φ̇s).
   d.gain_s = 1.0 - p_.tooth_friction * m.torque_sign * direction(m.secondary);

@@ -53,12 +53,11 @@ struct GearParameters {
   double next_breakpoint(double t) const { return drive_profile.next_breakpoint(t); }
   /// The feedback of φ̇p on the primary's torque: the motor line's fall plus viscous friction.
   double primary_speed_feedback() const { return motor_slope + viscous_primary; }
-  /// True when every mode is linear with constant forcing, which the exact
-  /// solver integrates in closed form: drive steps, but no ramp, motor line
-  /// or viscous friction (those run on the adaptive solver).
-  bool forcing_constant_in_modes() const {
-    return drive_profile.piecewise_constant() && primary_speed_feedback() == 0 &&
-           viscous_secondary == 0 && !stribeck();
+  /// True when every mode is linear with forcing linear in time, which the
+  /// exact solver integrates in closed form: drive steps, ramps and tables,
+  /// but no motor line or viscous friction (those run on the adaptive solver).
+  bool forcing_linear_in_modes() const {
+    return primary_speed_feedback() == 0 && viscous_secondary == 0 && !stribeck();
   }
   bool primary_has_friction() const { return bearing_primary > 0; }
   bool secondary_has_friction() const {
@@ -95,10 +94,11 @@ struct Guard {
 };
 
 /// Constants of the linear equations of one mode:
-///   φ̇p' = inv_p·(force_p − M0),  φ̇s' = inv_s·(gain_s·M0 + force_s),
-///   M0 = c·u + d·u̇ with u = Δφ − offset while `coupled`, else 0.
+///   φ̇p' = inv_p·(force_p + drive_rate·τ − M0),  φ̇s' = inv_s·(gain_s·M0 + force_s),
+///   M0 = c·u + d·u̇ with u = Δφ − offset while `coupled`, else 0; τ from the
+///   time the constants were taken at, on one piece of the drive profile.
 struct ModeDynamics {
-  double inv_p = 0, inv_s = 0, gain_s = 1, force_p = 0, force_s = 0;
+  double inv_p = 0, inv_s = 0, gain_s = 1, force_p = 0, force_s = 0, drive_rate = 0;
   bool coupled = false;
   double offset = 0, stiffness = 0, damping = 0;
 };

@@ -33,13 +33,15 @@ class ExactSegment : public Segment {
       : d_(d), s0_(s), t0_(t0), horizon_(horizon),
         weight_(d.inv_p + d.inv_s * d.gain_s),
         force_(d.inv_p * d.force_p - d.inv_s * d.force_s),
+        force_rate_(d.inv_p * d.drive_rate),
         oscillator_(d.coupled ? weight_ * d.stiffness : 0.0, d.coupled ? weight_ * d.damping : 0.0,
-                    force_, s.dphi - d.offset, s.omega_p - s.omega_s) {
+                    force_, s.dphi - d.offset, s.omega_p - s.omega_s, force_rate_) {
     end_ = t0;
     step_ = oscillator_.sampling_step();
     const double vertex = oscillator_.vertex();
     if (!d.coupled && vertex > 0 && t0 + vertex < horizon) turns_[turn_count_++] = t0 + vertex;
-    if (!d.coupled && weight_ > 0) free_flight_turns(guards);
+    if (!d.coupled && weight_ > 0 && force_rate_ == 0) free_flight_turns(guards);
+    if (!d.coupled && force_rate_ != 0) ramp_turns(guards);
     if (step_ > 0) {
       for (const Guard& g : guards) shapes_.push_back(shape(g.form));
       wave_ = wave(0);
@@ -65,6 +67,12 @@ class ExactSegment : public Segment {
     //    lin(τ) + h(τ), and |h| never exceeds its bound at a.
     double reach = horizon_;
     for (const Shape& g : shapes_) {
+      if (g.l2 != 0) {  // a ramp bends the speeds: only this step's lowest point counts
+        if (!(g.lowest(ta, tb) - g.bound(wa, kappa()) - slack(g, tb, wa) > 0)) reach = a;
+        else reach = std::min(reach, b);
+        if (reach == a) break;
+        continue;
+      }
       const double bound = g.bound(wa, kappa()), margin = g.linear(ta) - bound - slack(g, ta, wa);
       if (bound == 0 && g.linear(ta) >= 0 && g.l1 >= 0) continue;  // the oscillation has died out
       if (!(margin > 0)) {
@@ -89,11 +97,12 @@ class ExactSegment : public Segment {
     double cut = b;
     for (const Shape& g : shapes_) {
       const double tolerance = slack(g, ta, wa);
-      const double lowest = std::min(g.linear(ta), g.linear(tb)) - g.bound(wa, kappa());
+      const double lowest = g.lowest(ta, tb) - g.bound(wa, kappa());
       if (lowest > tolerance) continue;
       // Nor can it dip below zero if both ends are higher than the deepest
       // sag a curvature of at most sup|g''| allows between them: (b − a)²/8·sup|g''|.
-      const double sag = 0.125 * (tb - ta) * (tb - ta) * g.curvature_bound(wa, kappa());
+      const double sag =
+          0.125 * (tb - ta) * (tb - ta) * (g.curvature_bound(wa, kappa()) + 2 * std::abs(g.l2));
       if (std::min(g.value(wa, ta), g.value(wb, tb)) - sag > tolerance) continue;
       const auto m = first_minimum(g, ta, tb, wa, wb);
       if (!m || !(t0_ + *m < cut)) continue;
@@ -117,9 +126,10 @@ class ExactSegment : public Segment {
   GearState state_at(double t) const override {
     const double tau = t - t0_;
     const ForcedOscillator::Values& x = values(tau);
-    const double impulse = d_.coupled && weight_ > 0 ? (force_ * tau - x.dv) / weight_ : 0.0;
+    const double impulse =
+        d_.coupled && weight_ > 0 ? (tau * (force_ + 0.5 * force_rate_ * tau) - x.dv) / weight_ : 0.0;
     GearState s;
-    s.omega_p = s0_.omega_p + d_.inv_p * (d_.force_p * tau - impulse);
+    s.omega_p = s0_.omega_p + d_.inv_p * (tau * (d_.force_p + 0.5 * d_.drive_rate * tau) - impulse);
     s.omega_s = s0_.omega_s + d_.inv_s * (d_.force_s * tau + d_.gain_s * impulse);
     s.dphi = s0_.dphi + x.du;
     return s;
@@ -132,18 +142,32 @@ class ExactSegment : public Segment {
     double w = 0, w1 = 0, w2 = 0, w3 = 0, w4 = 0;
   };
 
-  /// A guard within this mode: g(τ) = l0 + l1·τ + h(τ) with h = p·w + q·w'.
-  /// (The speeds are affine in τ plus the impulse −(u' − u'0)/weight, the
-  /// twist is offset + f/κ + w.) h solves the same homogeneous equation as w,
-  /// so h'' changes sign at most once on an interval shorter than half a
-  /// period, and at most once in all when the mode does not oscillate.
+  /// A guard within this mode: g(τ) = l0 + l1·τ + l2·τ² + h(τ) with h = p·w + q·w'.
+  /// (The speeds are polynomial in τ plus the impulse −(w' − w'0)/weight, the
+  /// twist is offset + u_p(τ) + w; l2 is not 0 only for speeds under a ramp.)
+  /// h solves the same homogeneous equation as w, so h'' (and h''') changes
+  /// sign at most once on an interval shorter than half a period, and at
+  /// most once in all when the mode does not oscillate.
   struct Shape {
-    double l0 = 0, l1 = 0, p = 0, q = 0;
+    double l0 = 0, l1 = 0, l2 = 0, p = 0, q = 0;
     double l0_size = 0, l1_size = 0;  ///< sums of the magnitudes that make up l0 and l1
     double linear(double tau) const { return l0 + l1 * tau; }
-    double value(const Wave& x, double tau) const { return linear(tau) + p * x.w + q * x.w1; }
-    double slope(const Wave& x) const { return l1 + p * x.w1 + q * x.w2; }
-    double curvature(const Wave& x) const { return p * x.w2 + q * x.w3; }
+    double polynomial(double tau) const { return l2 == 0 ? linear(tau) : l0 + tau * (l1 + l2 * tau); }
+    /// The polynomial part's least value on [ta, tb].
+    double lowest(double ta, double tb) const {
+      double low = std::min(polynomial(ta), polynomial(tb));
+      if (l2 > 0) {
+        const double vertex = -l1 / (2 * l2);
+        if (vertex > ta && vertex < tb) low = std::min(low, polynomial(vertex));
+      }
+      return low;
+    }
+    double value(const Wave& x, double tau) const { return polynomial(tau) + p * x.w + q * x.w1; }
+    double slope(const Wave& x, double tau) const {
+      return l2 == 0 ? l1 + p * x.w1 + q * x.w2 : l1 + 2 * l2 * tau + p * x.w1 + q * x.w2;
+    }
+    double curvature(const Wave& x) const { return 2 * l2 + p * x.w2 + q * x.w3; }
+    double third(const Wave& x) const { return p * x.w3 + q * x.w4; }
     /// sup |h| from here on: h'² + κ·h² never grows (its rate is −2δ·h'²).
     double bound(const Wave& x, double kappa) const {
       const double h = p * x.w + q * x.w1, h1 = p * x.w1 + q * x.w2;
@@ -176,6 +200,41 @@ class ExactSegment : public Segment {
     std::sort(turns_.begin(), turns_.begin() + turn_count_);
   }
 
+  /// In free flight under a ramp the twist is a cubic in τ and the primary's
+  /// speed a parabola: each guard is a polynomial of degree three at most,
+  /// monotone between the zeros of its derivative, a quadratic.
+  void ramp_turns(const std::vector<Guard>& guards) {
+    // A shaft that has just broken away at its friction level starts with a
+    // net torque of rounding size, which turns the guards within a few ulps
+    // of the start: no turn there, or it would stop again an ulp later.
+    const double soon = 16 * (std::nextafter(t0_, INFINITY) - t0_);
+    const double v0 = s0_.omega_p - s0_.omega_s;
+    for (const Guard& g : guards) {
+      const LinearForm& f = g.form;
+      // g'(τ) = a + b·τ + c·τ²
+      const double a = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s +
+                       f.dphi * v0 + f.time;
+      const double b = f.omega_p * d_.inv_p * d_.drive_rate + f.dphi * force_;
+      const double c = 0.5 * f.dphi * force_rate_;
+      double roots[2];
+      int n = 0;
+      if (c == 0) {
+        if (b != 0) roots[n++] = -a / b;
+      } else {
+        const double disc = b * b - 4 * a * c;
+        if (disc >= 0) {  // the stable pair of roots
+          const double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+          roots[n++] = q / c;
+          if (q != 0) roots[n++] = a / q;
+        }
+      }
+      for (int i = 0; i < n; ++i)
+        if (roots[i] > soon && t0_ + roots[i] < horizon_ && turn_count_ < max_turns)
+          turns_[turn_count_++] = t0_ + roots[i];
+    }
+    std::sort(turns_.begin(), turns_.begin() + turn_count_);
+  }
+
   /// The closed form at τ; the last one is kept, since the event locator asks
   /// for the state at each interval end right after advance() computed it.
   const ForcedOscillator::Values& values(double tau) const {
@@ -201,13 +260,18 @@ class ExactSegment : public Segment {
   /// A guard's LinearForm written in the closed form of state_at.
   Shape shape(const LinearForm& f) const {
     const double j = (-f.omega_p * d_.inv_p + f.omega_s * d_.inv_s * d_.gain_s) / weight_;
-    const double v0 = s0_.omega_p - s0_.omega_s;
+    // w'(0): u'(0) less the particular part's rate under a ramp
+    const double v0 = s0_.omega_p - s0_.omega_s - oscillator_.equilibrium_rate();
     Shape g;
     const double rest = oscillator_.equilibrium();
     g.l0 = f.omega_p * s0_.omega_p + f.omega_s * s0_.omega_s + f.constant +
            f.dphi * (d_.offset + rest) + j * v0;
     g.l1 = f.omega_p * d_.inv_p * d_.force_p + f.omega_s * d_.inv_s * d_.force_s + j * force_ +
            f.time;
+    if (force_rate_ != 0) {  // the ramp: the twist's particular part climbs, the speeds bend
+      g.l1 += f.dphi * oscillator_.equilibrium_rate();
+      g.l2 = 0.5 * (f.omega_p * d_.inv_p * d_.drive_rate + j * force_rate_);
+    }
     g.l0 += f.time * t0_;  // a guard that moves with a ramping drive
     g.p = f.dphi;
     g.q = -j;
@@ -218,6 +282,10 @@ class ExactSegment : public Segment {
     g.l0_size += std::abs(f.time * t0_);
     g.l1_size = std::abs(f.omega_p * d_.inv_p * d_.force_p) +
                 std::abs(f.omega_s * d_.inv_s * d_.force_s) + std::abs(j * force_) + std::abs(f.time);
+    if (force_rate_ != 0) {
+      g.l0_size += std::abs(j * oscillator_.equilibrium_rate());
+      g.l1_size += std::abs(f.dphi * oscillator_.equilibrium_rate()) + std::abs(g.l2 * horizon_);
+    }
     return g;
   }
 
@@ -232,21 +300,39 @@ class ExactSegment : public Segment {
   /// g' is monotone and a minimum is where it turns from < 0 to >= 0.
   std::optional<double> first_minimum(const Shape& g, double ta, double tb, const Wave& wa,
                                       const Wave& wb) const {
-    auto slope_at = [&](double tau) { return g.slope(wave(tau)); };
+    auto slope_at = [&](double tau) { return g.slope(wave(tau), tau); };
     auto curvature_at = [&](double tau) { return g.curvature(wave(tau)); };
+    auto third_at = [&](double tau) { return g.third(wave(tau)); };
     struct Piece {
       double lo, hi, slope_lo, slope_hi;
     };
-    Piece pieces[2];
+    Piece pieces[4];
     int count = 0;
+    // Where g'' changes sign on [lo, hi] (at most once when g'' is monotone
+    // there): cut into pieces on which g' is monotone.
+    auto split = [&](double lo, double hi, double ca, double cb, double sa, double sb) {
+      if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
+        const double m = root(curvature_at, lo, hi, ca, cb);
+        const double sm = slope_at(m);
+        pieces[count++] = {lo, m, sa, sm};
+        pieces[count++] = {m, hi, sm, sb};
+      } else {
+        pieces[count++] = {lo, hi, sa, sb};
+      }
+    };
     const double ca = g.curvature(wa), cb = g.curvature(wb);
-    if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
-      const double m = root(curvature_at, ta, tb, ca, cb);
-      const double sm = slope_at(m);
-      pieces[count++] = {ta, m, g.slope(wa), sm};
-      pieces[count++] = {m, tb, sm, g.slope(wb)};
+    const double sa = g.slope(wa, ta), sb = g.slope(wb, tb);
+    // With l2 = 0, g'' = h'' changes sign at most once here; with l2 ≠ 0,
+    // g''' = h''' does, and g'' is monotone on each side of its zero.
+    const double ra = g.l2 != 0 ? g.third(wa) : 0.0, rb = g.l2 != 0 ? g.third(wb) : 0.0;
+    if ((ra < 0 && rb > 0) || (ra > 0 && rb < 0)) {
+      const double m = root(third_at, ta, tb, ra, rb);
+      const Wave wm = wave(m);
+      const double cm = g.curvature(wm), smid = g.slope(wm, m);
+      split(ta, m, ca, cm, sa, smid);
+      split(m, tb, cm, cb, smid, sb);
     } else {
-      pieces[count++] = {ta, tb, g.slope(wa), g.slope(wb)};
+      split(ta, tb, ca, cb, sa, sb);
     }
     // A slope within rounding of zero counts as zero. Rounding here is mostly
     // that of the twist: Δφ carries the contact twist u = Δφ − offset only to
@@ -254,7 +340,7 @@ class ExactSegment : public Segment {
     const double rest = oscillator_.equilibrium();
     const double noise =
         8 * std::numeric_limits<double>::epsilon() *
-        (std::abs(g.l1) +
+        (std::abs(g.l1) + std::abs(2 * g.l2 * tb) +
          std::abs(g.p) * (std::abs(wa.w1) + std::abs(s0_.omega_p) + std::abs(s0_.omega_s)) +
          std::abs(g.q) * (oscillator_.delta() * std::abs(wa.w1) +
                           kappa() * (std::abs(wa.w) + std::abs(d_.offset) + std::abs(rest))));
@@ -279,17 +365,20 @@ class ExactSegment : public Segment {
 
   ModeDynamics d_;
   GearState s0_;
-  double t0_, horizon_, weight_, force_;
+  double t0_, horizon_, weight_, force_, force_rate_;
   ForcedOscillator oscillator_;
   double step_ = 0;
   double end_;
   // Free flight: where a guard may turn, in order; no heap per segment (the
   // twist's vertex and the parted phase's one guard).
-  static constexpr int max_turns = 4;
+  // Under a ramp: the twist's two (shared by both contact guards), the
+  // primary's speed's one and the parted phase's two; the segment must stay
+  // small enough for malloc's per-thread cache (measured: 1.9 % more instructions).
+  static constexpr int max_turns = 8;
   std::array<double, max_turns> turns_{};
   int turn_count_ = 0;
   /// A mode has at most nine guards: no heap per segment.
-  boost::container::small_vector<Shape, 10> shapes_;
+  boost::container::small_vector<Shape, 9> shapes_;
   Wave wave_;  ///< at end_
   mutable double cached_tau_ = std::numeric_limits<double>::quiet_NaN();
   mutable ForcedOscillator::Values cached_;

@@ -6,10 +6,17 @@
 
 namespace gearpatch {
 
-ForcedOscillator::ForcedOscillator(double kappa, double delta, double force, double u0, double v0)
-    : kappa_(kappa), delta_(delta), force_(force), u0_(u0), v0_(v0) {
+ForcedOscillator::ForcedOscillator(double kappa, double delta, double force, double u0, double v0,
+                                   double force_rate)
+    : kappa_(kappa), delta_(delta), force_(force), u0_(u0), v0_(v0), force_rate_(force_rate) {
+  w_rate0_ = v0_;
   if (kappa_ > 0) {
     rest_ = force_ / kappa_;
+    if (force_rate_ != 0) {  // the particular part of a ramp: (f + f1·t)/κ − δ·f1/κ²
+      rest_rate_ = force_rate_ / kappa_;
+      rest_ -= delta_ * force_rate_ / (kappa_ * kappa_);
+      w_rate0_ = v0_ - rest_rate_;
+    }
     decay_ = -0.5 * delta_;
     disc_ = kappa_ - decay_ * decay_;
   }
@@ -59,33 +66,33 @@ void modes(double a, double disc, double t, double& ec, double& es, double* ec_m
 
 void ForcedOscillator::at(double t, double& u, double& v) const {
   if (kappa_ == 0) {  // free flight (δ is 0 too: no coupling)
-    u = u0_ + t * (v0_ + 0.5 * force_ * t);
-    v = v0_ + force_ * t;
+    u = u0_ + t * (v0_ + t * (0.5 * force_ + force_rate_ * t / 6));
+    v = v0_ + t * (force_ + 0.5 * force_rate_ * t);
     return;
   }
   double ec, es;
   modes(decay_, disc_, t, ec, es);
-  const double w0 = u0_ - rest_;
-  u = rest_ + ec * w0 + es * (v0_ - decay_ * w0);
-  v = ec * v0_ + es * (decay_ * v0_ - kappa_ * w0);
+  const double w0 = u0_ - rest_, w1 = w_rate0_;
+  u = rest_ + rest_rate_ * t + ec * w0 + es * (w1 - decay_ * w0);
+  v = rest_rate_ + ec * w1 + es * (decay_ * w1 - kappa_ * w0);
 }
 
 void ForcedOscillator::evaluate(double t, Values& x) const {
   if (kappa_ == 0) {  // free flight: no free part to speak of
-    x.du = t * (v0_ + 0.5 * force_ * t);
-    x.dv = force_ * t;
+    x.du = t * (v0_ + t * (0.5 * force_ + force_rate_ * t / 6));
+    x.dv = t * (force_ + 0.5 * force_rate_ * t);
     x.w = u0_ + x.du;
     x.v = v0_ + x.dv;
     return;
   }
   double ec, es, ec_minus_1;
   modes(decay_, disc_, t, ec, es, &ec_minus_1);
-  const double w0 = u0_ - rest_;
-  const double sine_u = es * (v0_ - decay_ * w0), sine_v = es * (decay_ * v0_ - kappa_ * w0);
+  const double w0 = u0_ - rest_, w1 = w_rate0_;
+  const double sine_u = es * (w1 - decay_ * w0), sine_v = es * (decay_ * w1 - kappa_ * w0);
   x.w = ec * w0 + sine_u;
-  x.v = ec * v0_ + sine_v;
-  x.du = ec_minus_1 * w0 + sine_u;
-  x.dv = ec_minus_1 * v0_ + sine_v;
+  x.v = ec * w1 + sine_v;
+  x.du = ec_minus_1 * w0 + sine_u + rest_rate_ * t;
+  x.dv = ec_minus_1 * w1 + sine_v;
 }
 
 double ForcedOscillator::sampling_step() const {
@@ -97,7 +104,7 @@ double ForcedOscillator::sampling_step() const {
 }
 
 double ForcedOscillator::vertex() const {
-  if (kappa_ != 0 || force_ == 0) return -1;
+  if (kappa_ != 0 || force_ == 0 || force_rate_ != 0) return -1;
   return -v0_ / force_;
 }
 

@@ -2,18 +2,20 @@
 
 namespace gearpatch {
 
-/// The exact solution of u'' + δ·u' + κ·u = f from u(0), u'(0), for any
-/// damping (under-, critically, over-damped) and for κ = δ = 0 (free flight:
-/// a parabola). Within a mode of the gear model the relative twist obeys
-/// exactly this, so the exact solver is exact to rounding.
+/// The exact solution of u'' + δ·u' + κ·u = f + f1·t from u(0), u'(0), for
+/// any damping (under-, critically, over-damped) and for κ = δ = 0 (free
+/// flight: a cubic). Within a mode of the gear model, on one piece of a
+/// piecewise-linear drive, the relative twist obeys exactly this, so the
+/// exact solver is exact to rounding.
 class ForcedOscillator {
  public:
-  ForcedOscillator(double kappa, double delta, double force, double u0, double v0);
+  ForcedOscillator(double kappa, double delta, double force, double u0, double v0,
+                   double force_rate = 0);
 
   /// u(t) and u'(t).
   void at(double t, double& u, double& v) const;
-  /// Everything at t at once: the free (homogeneous) part w = u − f/κ and
-  /// its rate w' = u', each without the cancellation of subtracting the
+  /// Everything at t at once: the free (homogeneous) part w = u − u_p of the
+  /// twist, u_p(t) = (f + f1·t)/κ − δ·f1/κ², and its rate w', each without the cancellation of subtracting the
   /// equilibrium from u; and the changes u(t) − u(0), u'(t) − u'(0), each
   /// without the cancellation of subtracting the initial value (exact to
   /// relative precision as t → 0).
@@ -21,7 +23,9 @@ class ForcedOscillator {
     double w = 0, v = 0, du = 0, dv = 0;
   };
   void evaluate(double t, Values& x) const;
-  double equilibrium() const { return rest_; }  ///< f/κ (0 in free flight)
+  /// u_p(0) = f/κ − δ·f1/κ² (0 in free flight); u_p grows at f1/κ.
+  double equilibrium() const { return rest_; }
+  double equilibrium_rate() const { return rest_rate_; }
   double kappa() const { return kappa_; }
   double delta() const { return delta_; }
 
@@ -32,13 +36,15 @@ class ForcedOscillator {
   /// 1/12, 1/16 and 0.45), a quarter of the fastest decay time otherwise; 0
   /// in free flight (where `vertex` gives the only turning point).
   double sampling_step() const;
-  /// The time of u's extremum in free flight (negative if none ahead).
+  /// The time of u's extremum in free flight with constant forcing (negative if none ahead).
   double vertex() const;
   bool underdamped() const { return kappa_ > 0 && disc_ > 0; }
 
  private:
-  double kappa_, delta_, force_, u0_, v0_;
-  double rest_ = 0;    ///< f/κ, the equilibrium
+  double kappa_, delta_, force_, u0_, v0_, force_rate_;
+  double rest_ = 0;       ///< u_p(0)
+  double rest_rate_ = 0;  ///< u_p' = f1/κ
+  double w_rate0_ = 0;    ///< w'(0) = v0 − f1/κ
   double decay_ = 0;   ///< a = −δ/2
   double disc_ = 0;    ///< κ − a²
 };

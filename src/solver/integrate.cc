@@ -313,15 +313,14 @@ std::string adaptive_reason(const GearParameters& p) {
   auto add = [&](bool used, const char* what) {
     if (used) why += (why.empty() ? "" : ", ") + std::string(what);
   };
-  add(!p.drive_profile.piecewise_constant(), "a drive that ramps");
   add(p.motor_slope > 0, "the motor line");
   add(p.viscous_primary > 0 || p.viscous_secondary > 0, "viscous friction");
   add(p.stribeck(), "Stribeck friction");
-  return why.empty() ? why : "the exact solver integrates constant forcing only; this scene has " + why;
+  return why.empty() ? why : "the exact solver integrates forcing linear in time only; this scene has " + why;
 }
 
 std::unique_ptr<Stepper> make_reference_stepper(const GearParameters& p, double tolerance) {
-  return p.forcing_constant_in_modes() ? make_exact_stepper() : make_adaptive_stepper(tolerance);
+  return p.forcing_linear_in_modes() ? make_exact_stepper() : make_adaptive_stepper(tolerance);
 }
 
 SolverKind parse_solver(const std::string& name) {
@@ -333,8 +332,8 @@ SolverKind parse_solver(const std::string& name) {
 Trajectory simulate(const GearModel& model, const GearState& initial, const RunSpec& spec,
                     SolverKind solver, double tolerance) {
   Trajectory trajectory;
-  if (solver == SolverKind::exact && !model.parameters().forcing_constant_in_modes()) {
-    // A ramp, the motor line or viscous friction: the modes are no longer
+  if (solver == SolverKind::exact && !model.parameters().forcing_linear_in_modes()) {
+    // The motor line, viscous friction or Stribeck: the modes are no longer
     // integrated in closed form; the same guards and event location run on
     // the adaptive solver, and the output says so.
     solver = SolverKind::adaptive;

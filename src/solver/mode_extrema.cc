@@ -45,6 +45,10 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
     }
   }
   const double weight = d.inv_p + d.inv_s * d.gain_s;
+  inv_p_ = d.inv_p;
+  inv_s_ = d.inv_s;
+  gain_s_ = d.gain_s;
+  ramp_closed_form_ = p.forcing_linear_in_modes();
   if (d.coupled && weight > 0) {
     kappa_ = weight * d.stiffness;
     delta_ = weight * d.damping;
@@ -61,6 +65,14 @@ void ModeExtrema::walk(double a, double b) {
 }
 
 ModeExtrema::Point ModeExtrema::at(double t) const {
+  if (!have_ramp_) {  // the segment's piece of the drive profile starts at the first point
+    const double slope = model_.parameters().drive_slope(t);
+    forcing_rate_ = {inv_p_ * slope, 0, 0};
+    const double weight = inv_p_ + inv_s_ * gain_s_;
+    if (kappa_ > 0 && ramp_closed_form_ && slope != 0)
+      bend_ = inv_p_ * slope * inv_s_ * gain_s_ / weight;
+    have_ramp_ = true;
+  }
   Point p{t, segment_.state_at(t), {}};
   if (!affine_) {
     p.rate = model_.derivative(mode_, p.state, t);
@@ -100,14 +112,19 @@ struct ModeExtrema::Search {
   const LinearForm& f;
   double sign;
   Extremum& peak;
-  const LinearForm& r2;  ///< f's linear part times the mode's matrix, once and twice
-  const LinearForm& r3;
+  const Powers& powers;  ///< f's linear part times the mode's matrix, once and twice
+  double bend;           ///< σ·g'' of f's polynomial part under a ramp
 
   Search(const ModeExtrema& m, const LinearForm& f, double sign, Extremum& peak, const Powers& powers)
-      : m(m), f(f), sign(sign), peak(peak), r2(powers.r2), r3(powers.r3) {}
+      : m(m), f(f), sign(sign), peak(peak), powers(powers), bend(sign * m.bend(f)) {}
 
   Values values(const Point& p) const {
-    return {sign * f(p.state), sign * dot(f, p.rate), sign * dot(r2, p.rate), sign * dot(r3, p.rate)};
+    double g2 = dot(powers.r2, p.rate), g3 = dot(powers.r3, p.rate);
+    if (m.forcing_rate_.omega_p != 0) {  // under a ramp x'' = A·x' + b1
+      g2 += dot(f, m.forcing_rate_);
+      g3 += dot(powers.r2, m.forcing_rate_);
+    }
+    return {sign * f(p.state), sign * dot(f, p.rate), sign * g2, sign * g3};
   }
 
   void consider(const Point& p) const {
@@ -119,16 +136,20 @@ struct ModeExtrema::Search {
   /// bound on the free part, whose energy h'² + κ·h² never grows.
   double upper_bound(const Point& p, double end) const {
     if (!(m.kappa_ > 0)) return INFINITY;
-    return bound_from(m, values(p), end - p.t);
+    return bound_from(m, values(p), end - p.t, bend);
   }
 
   /// upper_bound from σ·f and its derivatives at a point, `span` ahead.
-  static double bound_from(const ModeExtrema& m, const Values& v, double span) {
-    const double h1 = -(v.g3 + m.delta_ * v.g2) / m.kappa_;
-    const double h = -(v.g2 + m.delta_ * h1) / m.kappa_;
+  /// Under a ramp the polynomial part bends by `bend` (its g''), which adds
+  /// at most bend·span²/2 above its chord's higher end.
+  static double bound_from(const ModeExtrema& m, const Values& v, double span, double bend) {
+    const double h2 = v.g2 - bend;
+    const double h1 = -(v.g3 + m.delta_ * h2) / m.kappa_;
+    const double h = -(h2 + m.delta_ * h1) / m.kappa_;
     const double line = v.g - h, slope = v.g1 - h1;
     const double radius = std::sqrt(h * h + h1 * h1 / m.kappa_);
-    const double bound = std::max(line, line + slope * span) + radius;
+    const double bound = std::max(line, line + slope * span) + radius +
+                         std::max(0.0, 0.5 * bend * span * span);
     // Within rounding of the peak found: nothing to gain there.
     return bound - 1e-12 * (std::abs(line) + radius);
   }
@@ -154,6 +175,23 @@ struct ModeExtrema::Search {
   /// found between the ends when their slopes show one, else on each side of
   /// the zero of g'' where the slope does not keep one sign.
   void leaf(const Point& a, const Point& b) const {
+    // Under a ramp g'' = bend + h'' may change sign twice; g''' = h''' changes
+    // sign at most once here, and on each side of its zero g'' is monotone.
+    if (bend != 0) {
+      const Values va = values(a), vb = values(b);
+      if ((va.g3 < 0 && vb.g3 > 0) || (va.g3 > 0 && vb.g3 < 0)) {
+        auto third = [&](double t) { return values(m.at(t)).g3; };
+        const Point c = m.at(root(third, a.t, b.t, va.g3, vb.g3));
+        monotone_leaf(a, c);
+        monotone_leaf(c, b);
+        return;
+      }
+    }
+    monotone_leaf(a, b);
+  }
+
+  /// leaf where g'' changes sign at most once.
+  void monotone_leaf(const Point& a, const Point& b) const {
     consider(a);
     consider(b);
     const Values va = values(a), vb = values(b);
@@ -178,12 +216,15 @@ void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
   if (kappa_ > 0) {
     // Both signs' first test at once: σ only flips the signs of f's values,
     // so one evaluation decides both (the common case: no new peak here).
-    const Values v{f(start_.state), dot(f, start_.rate), dot(p.r2, start_.rate),
-                   dot(p.r3, start_.rate)};
+    Values v{f(start_.state), dot(f, start_.rate), dot(p.r2, start_.rate), dot(p.r3, start_.rate)};
+    if (forcing_rate_.omega_p != 0) {  // under a ramp x'' = A·x' + b1
+      v.g2 += dot(f, forcing_rate_);
+      v.g3 += dot(p.r2, forcing_rate_);
+    }
     const Values negated{-v.g, -v.g1, -v.g2, -v.g3};
-    const double span = end_.t - start_.t, reached = std::abs(peak.value);
-    if (Search::bound_from(*this, v, span) <= reached &&
-        Search::bound_from(*this, negated, span) <= reached)
+    const double span = end_.t - start_.t, reached = std::abs(peak.value), c2 = bend(f);
+    if (Search::bound_from(*this, v, span, c2) <= reached &&
+        Search::bound_from(*this, negated, span, -c2) <= reached)
       return;
   }
   Search(*this, f, 1, peak, p).search(start_, end_);

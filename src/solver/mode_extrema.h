@@ -47,6 +47,8 @@ class ModeExtrema {
   };
 
   Point at(double t) const;
+  /// The constant g'' of the form's polynomial part under a ramp (0 without one).
+  double bend(const LinearForm& f) const { return bend_ * (f.omega_p + f.omega_s); }
   const Powers& powers(const LinearForm& f) const;
 
   const GearModel& model_;
@@ -63,6 +65,13 @@ class ModeExtrema {
   mutable Powers powers_[max_powers];
   mutable int power_count_ = 0;
   double kappa_ = 0, delta_ = 0, quarter_ = 0;
+  /// Under a ramp (taken at the first point asked for): the forcing's rate b1
+  /// and the shafts' common acceleration rate (λ·(1, 1, 0) = x_p'' in contact).
+  mutable bool have_ramp_ = false;
+  mutable GearState forcing_rate_{};
+  mutable double bend_ = 0;
+  double inv_p_ = 0, inv_s_ = 0, gain_s_ = 1;
+  bool ramp_closed_form_ = false;  ///< no speed feedback: x_p'' is λ·(1, 1, 0)
 };
 
 }  // namespace gearpatch
