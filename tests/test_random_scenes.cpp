@@ -168,8 +168,10 @@ TEST_CASE("--autoscale turns no passing scene into a failing one (random set and
   std::vector<Outcome> plain = default_outcomes();
   // Seed-2 scenes that --autoscale once broke: 38, 45, 59 (self-locking: the
   // lock's catch sank up to 6.9e-3 of M0m deep, φ̇p drifted 0.76 %) and 85
-  // (ngspice aborted in the damping switch, also on the gear retry).
-  for (int index : {38, 45, 59, 85}) {
+  // (ngspice aborted in the damping switch, also on the gear retry), and 80
+  // (a ratchet of 131 teeth 0.25 ms apart whose circuit teeth trail by more
+  // than half a tooth: nearest-first pairing counted one tooth extra).
+  for (int index : {38, 45, 59, 80, 85}) {
     const RandomScene r = random_scene(2, index);
     scenes.push_back(parse_scene(r.text, r.name + ".ini"));
     plain.push_back(run_verify(scenes.back(), false));

@@ -134,6 +134,15 @@ verify::CircuitTrace as_circuit(const Trajectory& reference) {
   return c;
 }
 
+/// A touch of the flanks `depth` rad deep at time `at` (in free flight).
+void add_touch_at(double at, double eps, double depth, verify::CircuitTrace& c) {
+  auto& x = c.signals.at(Signal::dphi);
+  std::size_t i = 0;
+  while (c.t[i] < at) ++i;
+  const double side = x[i] < 0 ? -1 : 1;
+  for (double bump : {0.5, 1.0, 0.5}) x[i++] = side * (eps + bump * depth);
+}
+
 /// A touch of the flanks `depth` rad deep in free flight, after the first release.
 void add_touch(const Trajectory& reference, double eps, double depth, verify::CircuitTrace& c) {
   double after = 0;
@@ -158,8 +167,9 @@ TEST_CASE("a touch below the machine's resolution is grazing, a real extra or mi
   const Trajectory reference = simulate(model, initial_state(scene), run_spec(scene));
   const double eps = model.parameters().half_backlash;
   const double resolution = 1e-4;  // rad beyond ε
+  const verify::MatchLimits limits{resolution, 0.005 * scene.duration, scene.duration};
 
-  const verify::ImpactMatch perfect = verify::match_impacts(reference, as_circuit(reference), model, resolution);
+  const verify::ImpactMatch perfect = verify::match_impacts(reference, as_circuit(reference), model, limits);
   CHECK(perfect.impacts.size() == 3);
   CHECK(perfect.circuit_count == 3);
   CHECK(perfect.missing() == 0);
@@ -167,7 +177,7 @@ TEST_CASE("a touch below the machine's resolution is grazing, a real extra or mi
 
   verify::CircuitTrace grazed = as_circuit(reference);
   add_touch(reference, eps, 0.5 * resolution, grazed);
-  const verify::ImpactMatch graze = verify::match_impacts(reference, grazed, model, resolution);
+  const verify::ImpactMatch graze = verify::match_impacts(reference, grazed, model, limits);
   CHECK(graze.circuit_count == 4);
   CHECK(graze.extra() == 0);
   REQUIRE(graze.impacts.size() == 4);
@@ -176,12 +186,23 @@ TEST_CASE("a touch below the machine's resolution is grazing, a real extra or mi
 
   verify::CircuitTrace bounced = as_circuit(reference);
   add_touch(reference, eps, 100 * resolution, bounced);
-  const verify::ImpactMatch bounce = verify::match_impacts(reference, bounced, model, resolution);
+  const verify::ImpactMatch bounce = verify::match_impacts(reference, bounced, model, limits);
   CHECK(bounce.extra() == 1);
   CHECK(!bounce.impacts.back().grazing);
 
+  // The same touch within the time tolerance of the run's end: its partner may lie beyond the run.
+  verify::CircuitTrace late = as_circuit(reference);
+  add_touch_at(scene.duration - 0.5 * limits.time_tolerance, eps, 100 * resolution, late);
+  const verify::ImpactMatch last = verify::match_impacts(reference, late, model, limits);
+  CHECK(last.circuit_count == 4);
+  CHECK(last.extra() == 0);
+  CHECK(last.impacts.back().near_end);
+  verify::CircuitTrace earlier = as_circuit(reference);
+  add_touch_at(scene.duration - 2 * limits.time_tolerance, eps, 100 * resolution, earlier);
+  CHECK(verify::match_impacts(reference, earlier, model, limits).extra() == 1);
+
   verify::CircuitTrace slack = as_circuit(reference);
   for (double& x : slack.signals.at(Signal::dphi)) x *= 0.5;  // never reaches the flanks
-  const verify::ImpactMatch none = verify::match_impacts(reference, slack, model, resolution);
+  const verify::ImpactMatch none = verify::match_impacts(reference, slack, model, limits);
   CHECK(none.missing() == 3);
 }

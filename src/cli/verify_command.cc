@@ -161,7 +161,10 @@ int run_verify(const std::vector<std::string>& args) {
   verify::VerifyResult result = verify::verify(scene, o, *simulator);
   // A failure's causes, measured on changed copies of the deck (a user's deck cannot be changed so).
   if (!result.passed && !o.deck_text) {
-    const auto causes = tolerance::diagnose_by_measurement(scene, o, result, runs::core_count());
+    // Its changed decks must not replace the one --keep-deck kept: that is the deck judged above.
+    verify::VerifyOptions changed = o;
+    changed.limits.keep_deck_as.clear();
+    const auto causes = tolerance::diagnose_by_measurement(scene, changed, result, runs::core_count());
     std::vector<std::string> lines;
     for (const auto& c : causes) lines.push_back(c.sentence());
     if (causes.empty())

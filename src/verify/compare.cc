@@ -104,7 +104,7 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
     e.rms_error = rms_distance(tube, c.t, c.signals.at(signal)) / scale;
     out.signals.push_back(e);
   }
-  out.impacts = match_impacts(ref, c, model, settings.grazing_depth);
+  out.impacts = match_impacts(ref, c, model, {settings.grazing_depth, out.time_tolerance, settings.duration});
   const auto m0 = std::find_if(settings.full_scales.begin(), settings.full_scales.end(),
                                [](const auto& s) { return s.first == Signal::m0; });
   for (Impact& i : out.impacts.impacts) {
@@ -112,7 +112,7 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
       i.peak_error = std::abs(i.peak_circuit - i.peak_reference) / m0->second;
     if (i.matched())
       out.worst_impact_shift = std::max(out.worst_impact_shift, std::abs(i.circuit - i.reference) / settings.duration);
-    else if (i.reference >= 0 && !i.grazing)
+    else if (i.reference >= 0 && i.counts())
       out.worst_impact_shift = 1;
     if (i.restitution_circuit >= 0) out.restitution.push_back(i.restitution_circuit);
   }

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
+#include <utility>
 
 namespace gearpatch::verify {
 namespace {
@@ -77,22 +77,79 @@ bool frictionless_and_free(const GearParameters& p) {
          p.load_torque == 0;
 }
 
+/// What an alignment costs: mismatches the judge would count, then seconds.
+struct Cost {
+  int mismatches = 0;
+  double seconds = 0;
+  bool operator<(const Cost& o) const {
+    return mismatches != o.mismatches ? mismatches < o.mismatches : seconds < o.seconds;
+  }
+  Cost plus(int n, double s) const { return {mismatches + n, seconds + s}; }
+};
+
+/// Each reference contact's partner in the circuit (-1: none), in order: the
+/// k-th impact of one run is never paired past a later one of the other. Of
+/// all such alignments the one with the fewest mismatches the judge counts (a
+/// pair shifted beyond the time tolerance, an unpaired contact deeper than
+/// grazing and not within the tolerance of the run's end), then the least
+/// shift. Nearest-first pairing read a ratchet whose circuit teeth trail the
+/// reference's by more than half a tooth as one tooth extra (random-2-080).
+std::vector<int> align(const std::vector<Contact>& ref, const std::vector<Contact>& cir, const MatchLimits& limits) {
+  const std::size_t n = ref.size(), m = cir.size();
+  const auto unpaired = [&](const Contact& c) {
+    const bool counts = c.depth > limits.grazing_depth && c.begin <= limits.run_end - limits.time_tolerance;
+    return std::pair(counts ? 1 : 0, limits.time_tolerance);  // pairing within 2 tolerances beats two unpaired
+  };
+  enum Move : unsigned char { pair, skip_reference, skip_circuit };
+  std::vector<Move> move((n + 1) * (m + 1), pair);
+  std::vector<Cost> row(m + 1), next(m + 1);
+  for (std::size_t j = 1; j <= m; ++j) {
+    const auto [k, s] = unpaired(cir[j - 1]);
+    row[j] = row[j - 1].plus(k, s);
+    move[j] = skip_circuit;
+  }
+  for (std::size_t i = 1; i <= n; ++i) {
+    const auto [ki, si] = unpaired(ref[i - 1]);
+    next[0] = row[0].plus(ki, si);
+    move[i * (m + 1)] = skip_reference;
+    for (std::size_t j = 1; j <= m; ++j) {
+      const double shift = std::abs(ref[i - 1].begin - cir[j - 1].begin);
+      Cost best = row[j - 1].plus(shift > limits.time_tolerance ? 1 : 0, shift);
+      Move how = pair;
+      if (const Cost c = row[j].plus(ki, si); c < best) best = c, how = skip_reference;
+      const auto [kj, sj] = unpaired(cir[j - 1]);
+      if (const Cost c = next[j - 1].plus(kj, sj); c < best) best = c, how = skip_circuit;
+      next[j] = best;
+      move[i * (m + 1) + j] = how;
+    }
+    std::swap(row, next);
+  }
+  std::vector<int> partner(n, -1);
+  for (std::size_t i = n, j = m; i > 0 || j > 0;) {
+    const Move how = move[i * (m + 1) + j];
+    if (how == pair) partner[i - 1] = static_cast<int>(j - 1), --i, --j;
+    else if (how == skip_reference) --i;
+    else --j;
+  }
+  return partner;
+}
+
 }  // namespace
 
 int ImpactMatch::missing() const {
   return static_cast<int>(std::count_if(impacts.begin(), impacts.end(), [](const Impact& i) {
-    return i.reference >= 0 && i.circuit < 0 && !i.grazing;
+    return i.reference >= 0 && i.circuit < 0 && i.counts();
   }));
 }
 
 int ImpactMatch::extra() const {
   return static_cast<int>(std::count_if(impacts.begin(), impacts.end(), [](const Impact& i) {
-    return i.reference < 0 && i.circuit >= 0 && !i.grazing;
+    return i.reference < 0 && i.circuit >= 0 && i.counts();
   }));
 }
 
 ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circuit, const GearModel& model,
-                          double grazing_depth) {
+                          const MatchLimits& limits) {
   ImpactMatch out;
   const double eps = model.parameters().half_backlash;
   if (eps == 0) return out;
@@ -100,16 +157,10 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
   const std::vector<Contact> ref = reference_contacts(reference, eps, free);
   const std::vector<Contact> cir = circuit_contacts(circuit, eps, free);
   out.circuit_count = static_cast<int>(cir.size());
-  // Nearest pairs first, each contact used once: a shallow contact on one
-  // side cannot take the partner of a real one nearby.
-  std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;
-  for (std::size_t i = 0; i < ref.size(); ++i)
-    for (std::size_t j = 0; j < cir.size(); ++j) pairs.emplace_back(std::abs(ref[i].begin - cir[j].begin), i, j);
-  std::sort(pairs.begin(), pairs.end());
-  std::vector<int> partner(ref.size(), -1);
+  const std::vector<int> partner = align(ref, cir, limits);
   std::vector<bool> taken(cir.size(), false);
-  for (const auto& [gap, i, j] : pairs)
-    if (partner[i] < 0 && !taken[j]) partner[i] = static_cast<int>(j), taken[j] = true;
+  for (int j : partner)
+    if (j >= 0) taken[j] = true;
   for (std::size_t i = 0; i < ref.size(); ++i) {
     Impact m{ref[i].begin};
     m.depth = ref[i].depth;
@@ -123,7 +174,8 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
       m.restitution_circuit = c.restitution;
       m.released = ref[i].released && c.released;
     } else {
-      m.grazing = m.depth <= grazing_depth;
+      m.grazing = m.depth <= limits.grazing_depth;
+      m.near_end = m.reference > limits.run_end - limits.time_tolerance;
     }
     out.impacts.push_back(m);
   }
@@ -134,7 +186,8 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
       m.depth = cir[j].depth;
       m.peak_circuit = cir[j].peak;
       m.restitution_circuit = cir[j].restitution;
-      m.grazing = m.depth <= grazing_depth;
+      m.grazing = m.depth <= limits.grazing_depth;
+      m.near_end = m.circuit > limits.run_end - limits.time_tolerance;
       out.impacts.push_back(m);
     }
   return out;

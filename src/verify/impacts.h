@@ -13,11 +13,13 @@ struct Impact {
   double reference = -1, circuit = -1;  ///< s, real time of the outward crossing |Δφ| = ε
   double depth = 0;      ///< rad of penetration beyond ε, the deeper side's
   bool grazing = false;  ///< unmatched, and too shallow for the machine to resolve
+  bool near_end = false; ///< unmatched, within the time tolerance of the run's end: its partner may lie beyond it
   double peak_reference = 0, peak_circuit = 0;  ///< N·m, largest |M0| within the contact
   double restitution_reference = -1, restitution_circuit = -1;  ///< -1: not measured
   bool released = false;  ///< matched and parted in both runs: its peak is complete
   double peak_error = 0;  ///< |peak_circuit − peak_reference| / M0's full scale, matched impacts
   bool matched() const { return reference >= 0 && circuit >= 0; }
+  bool counts() const { return !grazing && !near_end; }  ///< unmatched, a mismatch the judge counts
 };
 
 /// The impacts of both runs, matched one to one by nearest time.
@@ -28,12 +30,20 @@ struct ImpactMatch {
   int extra() const;    ///< circuit impacts the reference lacks, grazing ones not counted
 };
 
+/// What the matching may excuse: the machine's resolution in Δφ and the time tolerance.
+struct MatchLimits {
+  double grazing_depth = 0;   ///< rad beyond ε: an unmatched contact this shallow is grazing
+  double time_tolerance = 0;  ///< s: the largest shift of a pair the judge accepts
+  double run_end = 0;         ///< s: an unmatched contact within time_tolerance of it is not counted
+};
+
 /// Finds every contact of the reference (its events) and of the circuit
 /// (crossings of |Δφ| = ε) with its depth, peak torque and restitution, and
-/// matches them. A contact whose depth is at most `grazing_depth` (the
-/// machine's resolution in Δφ, from the comparator offset) that finds no
-/// partner is grazing: reported, not a mismatch.
+/// matches them in order. A contact whose depth is at most the grazing depth
+/// (the machine's resolution in Δφ, from the comparator offset) that finds no
+/// partner is grazing, one within the time tolerance of the run's end is
+/// near_end: reported, not a mismatch.
 ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circuit, const GearModel& model,
-                          double grazing_depth);
+                          const MatchLimits& limits);
 
 }  // namespace gearpatch::verify

@@ -25,6 +25,7 @@ std::string impact_rows(const VerifyResult& r) {
   for (std::size_t k = 0; k < std::min(shown, impacts.size()); ++k) {
     const Impact& i = impacts[k];
     const std::string note = i.grazing ? fmt::format("grazing, {:.3g} rad deep", i.depth)
+                           : i.near_end ? "near the run's end (its partner may lie beyond)"
                            : i.circuit < 0 ? "missing in the circuit"
                            : i.reference < 0 ? "not in the reference" : "";
     t += fmt::format("{:>12} {:>12} {:>8} {:>11.5g} {:>11.5g} {:>7} {:>7} {:>7}  {}\n", time(i.reference),
@@ -107,7 +108,7 @@ std::string to_json(const VerifyResult& r) {
   j["impacts"] = nlohmann::json::array();
   for (const auto& i : r.comparison.impacts.impacts)
     j["impacts"].push_back({{"reference", i.reference}, {"circuit", i.circuit}, {"depth", i.depth},
-                            {"grazing", i.grazing}, {"peak_reference", i.peak_reference},
+                            {"grazing", i.grazing}, {"near_end", i.near_end}, {"peak_reference", i.peak_reference},
                             {"peak_circuit", i.peak_circuit}, {"peak_error", i.peak_error},
                             {"restitution_reference", i.restitution_reference},
                             {"restitution_circuit", i.restitution_circuit}});
