@@ -40,4 +40,24 @@ int check_never_against_engagement(const GearModel& model, const Trajectory& tra
   return engaged;
 }
 
+double scaled_difference(const Trajectory& reference, const Trajectory& other, bool peaks) {
+  REQUIRE(reference.samples.size() == other.samples.size());
+  double scale[4] = {0, 0, 0, 0}, worst = 0;
+  auto columns = [](const Sample& s) { return std::array<double, 4>{s.omega_p, s.omega_s, s.dphi, s.m0}; };
+  for (const Sample& s : reference.samples)
+    for (int i = 0; i < 4; ++i) scale[i] = std::max(scale[i], std::abs(columns(s)[i]));
+  for (std::size_t k = 0; k < reference.samples.size(); ++k) {
+    const auto a = columns(reference.samples[k]), b = columns(other.samples[k]);
+    for (int i = 0; i < 4; ++i)
+      if (scale[i] > 0) worst = std::max(worst, std::abs(a[i] - b[i]) / scale[i]);
+  }
+  if (!peaks) return worst;
+  const Extremum* pa[4] = {&reference.peaks.omega_p, &reference.peaks.omega_s, &reference.peaks.dphi,
+                           &reference.peaks.m0};
+  const Extremum* pb[4] = {&other.peaks.omega_p, &other.peaks.omega_s, &other.peaks.dphi, &other.peaks.m0};
+  for (int i = 0; i < 4; ++i)
+    if (scale[i] > 0) worst = std::max(worst, std::abs(pa[i]->value - pb[i]->value) / scale[i]);
+  return worst;
+}
+
 }  // namespace gearpatch::testing

@@ -44,6 +44,11 @@ inline std::string scene_path(const std::string& name) { return source_path("sce
 
 inline Scene example_scene(const std::string& name) { return load_scene(scene_path(name)); }
 
+/// The largest difference between two runs on the same output grid over
+/// φ̇p, φ̇s, Δφ and M0, each as a fraction of its column's full scale in
+/// `reference` (the largest |value|); with `peaks`, the runs' peaks as well.
+double scaled_difference(const Trajectory& reference, const Trajectory& other, bool peaks = false);
+
 /// A JSON file a command wrote, parsed.
 inline nlohmann::json read_json(const std::string& path) { return nlohmann::json::parse(read_file(path)); }
 

@@ -238,24 +238,6 @@ TEST_CASE("a stages file feeds the scene's coupling by (2.8)", "[drive]") {
 
 namespace {
 
-/// The largest difference between two runs over φ̇p, φ̇s, Δφ and M0 on their
-/// common output grid and in their peaks, each as a fraction of its column's
-/// full scale (the largest |value| of the column).
-double worst_difference(const Trajectory& a, const Trajectory& b) {
-  REQUIRE(a.samples.size() == b.samples.size());
-  double scale[4] = {0, 0, 0, 0}, worst = 0;
-  auto columns = [](const Sample& x) { return std::array<double, 4>{x.omega_p, x.omega_s, x.dphi, x.m0}; };
-  for (const Sample& x : a.samples)
-    for (int i = 0; i < 4; ++i) scale[i] = std::max(scale[i], std::abs(columns(x)[i]));
-  for (std::size_t k = 0; k < a.samples.size(); ++k)
-    for (int i = 0; i < 4; ++i)
-      worst = std::max(worst, std::abs(columns(a.samples[k])[i] - columns(b.samples[k])[i]) / scale[i]);
-  const Extremum* pa[4] = {&a.peaks.omega_p, &a.peaks.omega_s, &a.peaks.dphi, &a.peaks.m0};
-  const Extremum* pb[4] = {&b.peaks.omega_p, &b.peaks.omega_s, &b.peaks.dphi, &b.peaks.m0};
-  for (int i = 0; i < 4; ++i) worst = std::max(worst, std::abs(pa[i]->value - pb[i]->value) / scale[i]);
-  return worst;
-}
-
 const std::string ramp_scene = gear + "backlash = 0.2\n[friction]\nbearing_primary = 0.2\n"
                                "bearing_secondary = 0.3\n[drive]\nprofile = ramp\ntorque = 0.1\n"
                                "ramp_start = 0.2\nramp_end = 1.7\nramp_torque = 4\n"
@@ -278,7 +260,7 @@ TEST_CASE("ramps and tables run in closed form and agree with the adaptive solve
       CHECK(std::abs(exact.events[i].t - adaptive.events[i].t) < 1e-8);
     }
     // Measured (adaptive at rtol 1e-12): 2.1e-13 (ramp) and 1.5e-12 (table) of full scale.
-    CHECK(worst_difference(exact, adaptive) < 1e-10);
+    CHECK(testing::scaled_difference(exact, adaptive, true) < 1e-10);
   }
   // The ramp's two corners are events; the table's corners are checked above.
   std::vector<double> corners;
@@ -334,7 +316,7 @@ TEST_CASE("a ramp's particular solution carries the damping term -δ·f1/κ²", 
                               "press.ini");
   const Trajectory exact = run(s), adaptive = run(s, SolverKind::adaptive, 1e-12);
   CHECK(exact.closed_form);
-  CHECK(worst_difference(exact, adaptive) < 1e-10);
+  CHECK(testing::scaled_difference(exact, adaptive, true) < 1e-10);
 }
 
 TEST_CASE("under a ramp the flanks never pass the backlash in free flight", "[drive]") {

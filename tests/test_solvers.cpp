@@ -14,22 +14,6 @@ using namespace gearpatch;
 
 namespace {
 
-/// Largest difference between two runs on the same grid, as a fraction of
-/// each signal's full scale in the reference.
-double scaled_difference(const Trajectory& reference, const Trajectory& other) {
-  REQUIRE(reference.samples.size() == other.samples.size());
-  double scale[4] = {0, 0, 0, 0}, worst = 0;
-  auto columns = [](const Sample& s) { return std::array<double, 4>{s.omega_p, s.omega_s, s.dphi, s.m0}; };
-  for (const Sample& s : reference.samples)
-    for (int i = 0; i < 4; ++i) scale[i] = std::max(scale[i], std::abs(columns(s)[i]));
-  for (std::size_t k = 0; k < reference.samples.size(); ++k) {
-    const auto a = columns(reference.samples[k]), b = columns(other.samples[k]);
-    for (int i = 0; i < 4; ++i)
-      if (scale[i] > 0) worst = std::max(worst, std::abs(a[i] - b[i]) / scale[i]);
-  }
-  return worst;
-}
-
 Trajectory run_example(const std::string& name, SolverKind solver, double tolerance = 1e-10) {
   const Scene scene = testing::example_scene(name);
   const GearModel model(gear_parameters(scene));
@@ -94,7 +78,7 @@ TEST_CASE("exact and adaptive solvers agree within the tolerance on every exampl
     for (double tolerance : {1e-5, 1e-8}) {
       INFO(name << " at tolerance " << tolerance);
       const Trajectory adaptive = run_example(name, SolverKind::adaptive, tolerance);
-      CHECK(scaled_difference(exact, adaptive) <= tolerance);
+      CHECK(testing::scaled_difference(exact, adaptive) <= tolerance);
     }
   }
 }
@@ -104,7 +88,7 @@ TEST_CASE("the adaptive solver converges as its tolerance tightens", "[solver]")
     const Trajectory exact = run_example(name, SolverKind::exact);
     double previous = INFINITY;
     for (double tolerance : {1e-3, 1e-5, 1e-7, 1e-9}) {
-      const double error = scaled_difference(exact, run_example(name, SolverKind::adaptive, tolerance));
+      const double error = testing::scaled_difference(exact, run_example(name, SolverKind::adaptive, tolerance));
       INFO(name << " tolerance " << tolerance << " error " << error);
       CHECK(error < previous / 10);  // 100× tighter buys at least 10× less error
       previous = error;
