@@ -13,7 +13,6 @@
 #include "machine/embedded_machines.h"
 
 namespace gearpatch {
-namespace po = boost::program_options;
 
 namespace {
 
@@ -170,18 +169,8 @@ class ProfileReader {
 
 std::map<std::string, std::string> read_values(const std::string& text, const std::string& source,
                                                const std::map<std::string, int>& lines) {
-  po::options_description description;
-  for (const auto& [key, help] : profile_keys())
-    description.add_options()(key.c_str(), po::value<std::string>(), help.c_str());
-  std::istringstream in(text);
-  po::parsed_options parsed(&description);
-  try {
-    parsed = po::parse_config_file(in, description, true);
-  } catch (const po::error& e) {
-    throw Error(source + ": " + option_error_message(e));
-  }
   std::map<std::string, std::string> values;
-  for (const auto& option : parsed.options) {
+  for (const auto& option : parse_ini_options(text, profile_keys(), source)) {
     if (option.unregistered) {
       auto line = lines.find(option.string_key);
       throw Error(fmt::format("{}{}: {}: unknown key (a machine profile knows {})", source,

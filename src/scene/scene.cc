@@ -20,7 +20,6 @@
 #include "scene/units.h"
 
 namespace gearpatch {
-namespace po = boost::program_options;
 
 const std::map<std::string, std::string>& scene_keys() {
   static const std::map<std::string, std::string> keys = {
@@ -155,18 +154,8 @@ void check_lines(const std::string& text, const std::string& source) {
 /// Reads the raw strings of a scene, one per key, rejecting unknown keys.
 std::map<std::string, std::string> read_values(const std::string& text, const KeyLines& key_lines,
                                                Scene& scene) {
-  po::options_description description;
-  for (const auto& [key, help] : scene_keys())
-    description.add_options()(key.c_str(), po::value<std::string>(), help.c_str());
-  std::istringstream in(text);
-  po::parsed_options parsed(&description);
-  try {
-    parsed = po::parse_config_file(in, description, true);
-  } catch (const po::error& e) {
-    throw Error(scene.source + ": " + option_error_message(e));
-  }
   std::map<std::string, std::string> values;
-  for (const auto& option : parsed.options) {
+  for (const auto& option : parse_ini_options(text, scene_keys(), scene.source)) {
     scene.lines.emplace(option.string_key, 0);
     if (option.unregistered)
       throw Error(scene.where(option.string_key) + ": " + option.string_key +
