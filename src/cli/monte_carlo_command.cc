@@ -60,13 +60,8 @@ int run_monte_carlo(const std::vector<std::string>& args) {
       ("autoscale", "scale from the simulated peaks (as verify --autoscale)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit per run, s")
       ("jobs,j", po::value<unsigned>(), jobs_help.c_str())
-      ("plot", po::value<std::string>(), "histogram of each signal's worst error (.png or .svg)")
-      ("run-dir", po::value<std::string>(), "keep the run folder (jobs, results, logs) in DIR, a new folder")
-      ("job-list", po::value<std::string>(), "only write the run folder DIR: jobs.txt for GNU Parallel, "
-       "slurm.sh for a Slurm array; run them, then `gearpatch merge DIR`")
-      ("draw", po::value<std::size_t>(), "run only draw I (0-based) and write its result JSON to --result "
-       "(what each job of the run folder does)")
-      ("result", po::value<std::string>(), "with --draw: the result file");
+      ("plot", po::value<std::string>(), "histogram of each signal's worst error (.png or .svg)");
+  add_run_folder_options(options, "draw");
   add_output_options(options, "the table", "the summary");
   add_machine_option(options);
   po::variables_map vm;

@@ -116,6 +116,18 @@ void add_machine_option(po::options_description& options) {
                          "machine.profile, else generic. The scene's machine.* keys override it").c_str());
 }
 
+void add_run_folder_options(po::options_description& options, const std::string& unit) {
+  const std::string one = "run only " + unit + " I (0-based) and write its result JSON to --result "
+                          "(what each job of the run folder does)";
+  const std::string result = "with --" + unit + ": the result file";
+  options.add_options()
+      ("run-dir", po::value<std::string>(), "keep the run folder (jobs, results, logs) in DIR, a new folder")
+      ("job-list", po::value<std::string>(), "only write the run folder DIR: jobs.txt for GNU Parallel, "
+       "slurm.sh for a Slurm array; run them, then `gearpatch merge DIR`")
+      (unit.c_str(), po::value<std::size_t>(), one.c_str())
+      ("result", po::value<std::string>(), result.c_str());
+}
+
 std::string chosen_machine(const po::variables_map& vm) {
   return vm.count("machine") ? vm["machine"].as<std::string>() : "";
 }

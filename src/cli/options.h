@@ -56,6 +56,10 @@ circuit::TransientControl chosen_quality(const po::variables_map& vm);
 /// Adds --machine NAME|FILE, the machine profile the scene is patched on.
 void add_machine_option(po::options_description& options);
 
+/// --run-dir, --job-list, and the one-job pair --UNIT I / --result that each
+/// job of a run folder runs (UNIT: "point" for sweep, "draw" for monte-carlo).
+void add_run_folder_options(po::options_description& options, const std::string& unit);
+
 /// The --machine given, or "" for the scene's own machine.profile.
 std::string chosen_machine(const po::variables_map& vm);
 

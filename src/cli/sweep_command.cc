@@ -57,13 +57,8 @@ int run_sweep(const std::vector<std::string>& args) {
       ("jobs,j", po::value<unsigned>(), jobs_help.c_str())
       ("csv", po::value<std::string>(), "write the table as CSV to FILE")
       ("plot", po::value<std::string>(), "overlay of the --signals of every point over time (.png or .svg)")
-      ("figures-plot", po::value<std::string>(), "each figure against the first swept key (.png or .svg)")
-      ("run-dir", po::value<std::string>(), "keep the run folder (jobs, results, logs) in DIR, a new folder")
-      ("job-list", po::value<std::string>(), "only write the run folder DIR: jobs.txt for GNU Parallel, "
-       "slurm.sh for a Slurm array; run them, then `gearpatch merge DIR`")
-      ("point", po::value<std::size_t>(), "run only point I (0-based) and write its result JSON to --result "
-       "(what each job of the run folder does)")
-      ("result", po::value<std::string>(), "with --point: the result file");
+      ("figures-plot", po::value<std::string>(), "each figure against the first swept key (.png or .svg)");
+  add_run_folder_options(options, "point");
   add_output_options(options, "the table", "the table");
   add_machine_option(options);
   po::variables_map vm;
