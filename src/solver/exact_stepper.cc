@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "solver/forced_oscillator.h"
+#include "solver/newton_root.h"
 #include "solver/segment.h"
 
 namespace gearpatch {
@@ -300,8 +301,15 @@ class ExactSegment : public Segment {
   /// g' is monotone and a minimum is where it turns from < 0 to >= 0.
   std::optional<double> first_minimum(const Shape& g, double ta, double tb, const Wave& wa,
                                       const Wave& wb) const {
-    auto slope_at = [&](double tau) { return g.slope(wave(tau), tau); };
-    auto curvature_at = [&](double tau) { return g.curvature(wave(tau)); };
+    // Newton's method on g' and g'', whose derivatives the wave gives at once.
+    auto slope_at = [&](double tau) {
+      const Wave x = wave(tau);
+      return std::pair(g.slope(x, tau), g.curvature(x));
+    };
+    auto curvature_at = [&](double tau) {
+      const Wave x = wave(tau);
+      return std::pair(g.curvature(x), g.third(x));
+    };
     auto third_at = [&](double tau) { return g.third(wave(tau)); };
     struct Piece {
       double lo, hi, slope_lo, slope_hi;
@@ -312,8 +320,8 @@ class ExactSegment : public Segment {
     // there): cut into pieces on which g' is monotone.
     auto split = [&](double lo, double hi, double ca, double cb, double sa, double sb) {
       if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
-        const double m = root(curvature_at, lo, hi, ca, cb);
-        const double sm = slope_at(m);
+        const double m = bracketed_newton(curvature_at, lo, hi, ca, cb);
+        const double sm = slope_at(m).first;
         pieces[count++] = {lo, m, sa, sm};
         pieces[count++] = {m, hi, sm, sb};
       } else {
@@ -348,7 +356,7 @@ class ExactSegment : public Segment {
       const Piece& piece = pieces[i];
       if (!(piece.slope_lo < -noise && piece.slope_hi >= 0)) continue;
       if (piece.slope_hi == 0) return piece.hi;
-      const double r = root(slope_at, piece.lo, piece.hi, piece.slope_lo, piece.slope_hi);
+      const double r = bracketed_newton(slope_at, piece.lo, piece.hi, piece.slope_lo, piece.slope_hi);
       if (r > ta) return r;
     }
     return std::nullopt;

@@ -43,15 +43,26 @@ void modes(double a, double disc, double t, double& ec, double& es, double* ec_m
     es = e * s * t;
     if (ec_minus_1) *ec_minus_1 = e * c_minus_1 + std::expm1(a * t);
   } else if (disc > 0) {
-    const double b = std::sqrt(disc);
-    const double e = std::exp(a * t);
-    const double cosine = std::cos(b * t);
-    ec = e * cosine;
-    es = e * std::sin(b * t) / b;
-    if (ec_minus_1) {
-      const double half = std::sin(0.5 * b * t);
-      *ec_minus_1 = std::expm1(a * t) * cosine - 2 * half * half;
+    // Two library calls instead of four: e^{at} and e^{at} − 1 from one
+    // exponential, cos(bt) and sin(bt) from the half angle's sine and cosine
+    // (which also give cos(bt) − 1 = −2·sin²(bt/2) without cancellation).
+    const double b = std::sqrt(disc), at = a * t;
+    double e = 1, e_minus_1 = 0;
+    if (at != 0) {
+      if (std::abs(at) < 0.5) {  // e − 1 is exact to relative precision here, e too (|at| < 1/2)
+        e_minus_1 = std::expm1(at);
+        e = 1 + e_minus_1;
+      } else {  // e − 1 has no cancellation, and e keeps its relative precision when tiny
+        e = std::exp(at);
+        e_minus_1 = e - 1;
+      }
     }
+    double half_sine, half_cosine;
+    ::sincos(0.5 * b * t, &half_sine, &half_cosine);
+    const double cosine = (half_cosine - half_sine) * (half_cosine + half_sine);
+    ec = e * cosine;
+    es = e * (2 * half_sine * half_cosine) / b;
+    if (ec_minus_1) *ec_minus_1 = e_minus_1 * cosine - 2 * half_sine * half_sine;
   } else {  // written so that nothing overflows: a + g < 0 when κ > 0
     const double g = std::sqrt(-disc);
     const double slow = std::exp((a + g) * t);

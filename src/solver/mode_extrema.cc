@@ -1,5 +1,7 @@
 #include "solver/mode_extrema.h"
 
+#include "solver/newton_root.h"
+
 #include <algorithm>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
@@ -195,15 +197,22 @@ struct ModeExtrema::Search {
     consider(a);
     consider(b);
     const Values va = values(a), vb = values(b);
-    auto slope = [&](double t) { return values(m.at(t)).g1; };
-    auto curvature = [&](double t) { return values(m.at(t)).g2; };
+    // Each turning point by Newton's method on the next derivative.
+    auto slope = [&](double t) {
+      const Values v = values(m.at(t));
+      return std::pair(v.g1, v.g2);
+    };
+    auto curvature = [&](double t) {
+      const Values v = values(m.at(t));
+      return std::pair(v.g2, v.g3);
+    };
     auto piece = [&](const Point& lo, const Values& vlo, const Point& hi, const Values& vhi) {
-      if (vlo.g1 > 0 && vhi.g1 < 0) consider(m.at(root(slope, lo.t, hi.t, vlo.g1, vhi.g1)));
+      if (vlo.g1 > 0 && vhi.g1 < 0) consider(m.at(bracketed_newton(slope, lo.t, hi.t, vlo.g1, vhi.g1)));
     };
     if (va.g1 > 0 && vb.g1 < 0) return piece(a, va, b, vb);  // exactly one turn from + to −
     if (va.g1 < 0 && vb.g1 > 0) return;                       // the slope's one turn is a minimum
     if ((va.g2 < 0 && vb.g2 > 0) || (va.g2 > 0 && vb.g2 < 0)) {
-      const Point c = m.at(root(curvature, a.t, b.t, va.g2, vb.g2));
+      const Point c = m.at(bracketed_newton(curvature, a.t, b.t, va.g2, vb.g2));
       const Values vc = values(c);
       piece(a, va, c, vc);
       piece(c, vc, b, vb);
