@@ -107,6 +107,12 @@ GearState GearModel::derivative(const Mode& m, const GearState& s, double t) con
 
 std::vector<Guard> GearModel::guards(const Mode& m, double t) const {
   std::vector<Guard> g;
+  guards(m, t, g);
+  return g;
+}
+
+void GearModel::guards(const Mode& m, double t, std::vector<Guard>& g) const {
+  g.clear();
   const double eps = p_.half_backlash;
   switch (m.contact) {
     case Contact::free:
@@ -147,7 +153,6 @@ std::vector<Guard> GearModel::guards(const Mode& m, double t) const {
   }
   if (p_.tooth_friction > 0 && in_contact(m.contact) && m.torque_sign != 0)
     g.push_back({GuardKind::torque_reverses, combine(m.torque_sign, m0, 0)});
-  return g;
 }
 
 int GearModel::engagement(const Mode& m) const {

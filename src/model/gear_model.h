@@ -120,6 +120,8 @@ class GearModel {
   GearState derivative(const Mode& mode, const GearState& s, double t = 0) const;
   /// The guards of the mode on the drive profile's piece that starts at t.
   std::vector<Guard> guards(const Mode& mode, double t = 0) const;
+  /// The same into `out` (cleared first), which keeps its capacity from mode to mode.
+  void guards(const Mode& mode, double t, std::vector<Guard>& out) const;
 
   /// The mode the initial state starts in; may apply the self-locking reset.
   Mode initial_mode(GearState& state) const;

@@ -1,5 +1,7 @@
 #include "solver/event_locator.h"
 
+#include "solver/newton_root.h"
+
 #include <boost/container/small_vector.hpp>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
@@ -20,14 +22,15 @@ double refine(const F& f, double lo, double hi, double flo, double fhi) {
 }
 
 /// The crossing time of a guard that is >= 0 at `lo` (or on its boundary at
-/// the segment start) and negative at `hi`.
-template <class F>
-double crossing_time(const F& f, double lo, double hi, double flo, double fhi) {
-  if (flo > 0) return refine(f, lo, hi, flo, fhi);
+/// the segment start) and negative at `hi`, refined by `refine_on(lo, hi, flo, fhi)`.
+template <class F, class Refine>
+double crossing_time(const F& f, double lo, double hi, double flo, double fhi, const Refine& refine_on) {
+  if (fhi == 0) return hi;
+  if (flo > 0) return refine_on(lo, hi, flo, fhi);
   // On the boundary at the start of the mode: find where it moved inside.
   for (double width = 0.5 * (hi - lo); width > 0 && lo + width > lo; width *= 0.5) {
     const double value = f(lo + width);
-    if (value > 0) return refine(f, lo + width, hi, value, fhi);
+    if (value > 0) return refine_on(lo + width, hi, value, fhi);
   }
   return lo;  // it never went inside: the mode ends at once
 }
@@ -51,9 +54,23 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
     for (std::size_t i = 0; i < guards.size(); ++i) {
       const double value = guards[i].form.at(end, b);
       if (value < 0) {
-        auto f = [&](double t) { return guards[i].form.at(segment.state_at(t), t); };
+        const LinearForm& form = guards[i].form;
+        auto f = [&](double t) { return form.at(segment.state_at(t), t); };
         const double flo = a == t0 ? before[i] : std::max(before[i], 0.0);
-        const double t = crossing_time(f, a, b, flo, value);
+        GearState rate;
+        const double t =
+            segment.rate_at(b, rate)
+                ? crossing_time(f, a, b, flo, value, [&](double lo, double hi, double flo, double fhi) {
+                    auto value_and_slope = [&](double s) {
+                      segment.rate_at(s, rate);
+                      return std::pair(f(s), form.omega_p * rate.omega_p + form.omega_s * rate.omega_s +
+                                                 form.dphi * rate.dphi + form.time);
+                    };
+                    return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
+                  })
+                : crossing_time(f, a, b, flo, value, [&](double lo, double hi, double flo, double fhi) {
+                    return refine(f, lo, hi, flo, fhi);
+                  });
         if (t < first.time || !first.kind) first = {t, guards[i].kind};
       }
       before[i] = value;

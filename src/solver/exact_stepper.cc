@@ -136,6 +136,18 @@ class ExactSegment : public Segment {
     return s;
   }
 
+  /// The mode's equations at the closed-form state: M0 from the twist and its rate.
+  bool rate_at(double t, GearState& rate) const override {
+    const double tau = t - t0_;
+    const GearState s = state_at(t);
+    const double twist_rate = s.omega_p - s.omega_s;
+    const double m0 = d_.coupled ? d_.stiffness * (s.dphi - d_.offset) + d_.damping * twist_rate : 0.0;
+    rate.omega_p = d_.inv_p * (d_.force_p + d_.drive_rate * tau - m0);
+    rate.omega_s = d_.inv_s * (d_.gain_s * m0 + d_.force_s);
+    rate.dphi = twist_rate;
+    return true;
+  }
+
  private:
   /// The free part w = u − f/κ of the twist and its first four derivatives
   /// (w'' = −δw' − κw and so on).

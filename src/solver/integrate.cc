@@ -1,6 +1,7 @@
 #include "solver/integrate.h"
 
 #include <cmath>
+#include <functional>
 #include <fmt/format.h>
 #include <map>
 #include <numbers>
@@ -243,18 +244,20 @@ void integrate(const GearModel& model, Stepper& stepper, GearState state, const 
   double t = 0;
   EventBudget budget(spec);
   StepBudget steps(spec);
+  std::vector<Guard> guards;  // one allocation for the run, not one per mode
   while (t < spec.duration) {
     // A segment ends at the drive's next breakpoint too: the forcing changes there.
     const double breakpoint = model.parameters().next_breakpoint(t);
     const double horizon = std::min(spec.duration, breakpoint);
-    const std::vector<Guard> guards = model.guards(mode, t);
+    model.guards(mode, t, guards);
     auto segment = stepper.start(model, mode, state, t, horizon, guards);
-    Crossing crossing = locate_first_crossing(
-        *segment, guards, t, [&](double a, double b) {
-          steps.count(b, model, mode);
-          outputs.interval(a, b, mode, *segment);
-          outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
-        });
+    auto on_interval = [&](double a, double b) {
+      steps.count(b, model, mode);
+      outputs.interval(a, b, mode, *segment);
+      outputs.emit_through(b, mode, [&](double s) { return segment->state_at(s); });
+    };
+    // By reference: a std::function holds a reference_wrapper without a heap allocation.
+    Crossing crossing = locate_first_crossing(*segment, guards, t, std::ref(on_interval));
     GearState before = segment->state_at(crossing.time);
     if (!crossing.kind && crossing.time == breakpoint && breakpoint < spec.duration)
       crossing.kind = GuardKind::drive_breakpoint;

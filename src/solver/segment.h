@@ -15,6 +15,10 @@ class Segment {
   /// Extends the known solution; returns the new end time (at most the horizon).
   virtual double advance() = 0;
   virtual GearState state_at(double t) const = 0;
+  /// The state's time derivative at t where the segment has it in closed
+  /// form (the event locator then refines a crossing by Newton's method
+  /// instead of TOMS 748 on the values alone); false where it does not.
+  virtual bool rate_at(double /*t*/, GearState& /*rate*/) const { return false; }
 };
 
 /// Makes the segment of one mode; the exact solver and the adaptive one are
