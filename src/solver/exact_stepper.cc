@@ -23,7 +23,7 @@ namespace {
 /// The intervals it hands the event locator are chosen so that a sign check
 /// at their ends cannot miss a guard crossing: in free flight every guard is
 /// monotone on both sides of the vertex; in contact an interval is at most
-/// 1/8 of a period (when not oscillating: a quarter of the fastest decay
+/// 1/4 of a period (when not oscillating: a quarter of the fastest decay
 /// time, doubled at each step) and ends at the first local minimum of any
 /// guard that might reach zero, and stretches where no guard can reach zero
 /// are passed in one interval.

@@ -96,9 +96,13 @@ void ForcedOscillator::evaluate(double t, Values& x) const {
     x.v = v0_ + x.dv;
     return;
   }
+  const double w0 = u0_ - rest_, w1 = w_rate0_;
+  if (t == 0) {  // the start of every segment, asked for often
+    x = {w0, w1, 0, 0};
+    return;
+  }
   double ec, es, ec_minus_1;
   modes(decay_, disc_, t, ec, es, &ec_minus_1);
-  const double w0 = u0_ - rest_, w1 = w_rate0_;
   const double sine_u = es * (w1 - decay_ * w0), sine_v = es * (decay_ * w1 - kappa_ * w0);
   x.w = ec * w0 + sine_u;
   x.v = ec * w1 + sine_v;
@@ -109,7 +113,7 @@ void ForcedOscillator::evaluate(double t, Values& x) const {
 double ForcedOscillator::sampling_step() const {
   if (kappa_ == 0) return 0;
   // Shorter than half a period, so g'' changes sign on a step at most once.
-  if (disc_ > 0) return 2 * std::numbers::pi / std::sqrt(disc_) / 8;
+  if (disc_ > 0) return 2 * std::numbers::pi / std::sqrt(disc_) / 4;
   const double g = std::sqrt(-disc_);
   return 0.25 / (g - decay_);  // the faster of the two decays
 }
