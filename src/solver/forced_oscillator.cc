@@ -24,39 +24,46 @@ ForcedOscillator::ForcedOscillator(double kappa, double delta, double force, dou
 
 namespace {
 
+/// e^x and e^x − 1 from one library call, each to relative precision: from
+/// expm1 where |x| < 1/2 (e = 1 + (e − 1) then loses nothing), else from exp
+/// (e − 1 has no cancellation there, and a tiny e keeps its precision).
+void exponentials(double x, double& e, double& e_minus_1) {
+  if (x == 0) {
+    e = 1;
+    e_minus_1 = 0;
+  } else if (std::abs(x) < 0.5) {
+    e_minus_1 = std::expm1(x);
+    e = 1 + e_minus_1;
+  } else {
+    e = std::exp(x);
+    e_minus_1 = e - 1;
+  }
+}
+
 /// e^{at}·cos(√D·t) and e^{at}·sin(√D·t)/√D, continued to D <= 0 (cosh, sinh,
 /// and the critical limit 1, t) without loss of precision near D = 0; with
 /// `ec_minus_1`, also e^{at}·cos(√D·t) − 1 without the cancellation near t = 0.
 void modes(double a, double disc, double t, double& ec, double& es, double* ec_minus_1 = nullptr) {
   const double z = -disc * t * t;
-  if (std::abs(z) < 1e-3) {  // Taylor series of cos(√D t) and sin(√D t)/√D in z
-    double c = 1, s = 1, term_c = 1, term_s = 1, c_minus_1 = 0;
-    for (int n = 1; n <= 6; ++n) {
-      term_c *= z / ((2 * n - 1) * (2 * n));
-      term_s *= z / ((2 * n) * (2 * n + 1));
-      c += term_c;
-      s += term_s;
-      c_minus_1 += term_c;
-    }
-    const double e = std::exp(a * t);
-    ec = e * c;
+  if (std::abs(z) < 1e-3) {
+    // Taylor series of cos(√D t) − 1 and sin(√D t)/(√D t) in z, by Horner:
+    // the terms beyond z⁵ are below 1e-22 here.
+    const double c_minus_1 =
+        z * (1.0 / 2 + z * (1.0 / 24 + z * (1.0 / 720 + z * (1.0 / 40320 + z * (1.0 / 3628800)))));
+    const double s =
+        1 + z * (1.0 / 6 + z * (1.0 / 120 + z * (1.0 / 5040 + z * (1.0 / 362880 + z * (1.0 / 39916800)))));
+    double e, e_minus_1;
+    exponentials(a * t, e, e_minus_1);
+    ec = e * (1 + c_minus_1);
     es = e * s * t;
-    if (ec_minus_1) *ec_minus_1 = e * c_minus_1 + std::expm1(a * t);
+    if (ec_minus_1) *ec_minus_1 = e * c_minus_1 + e_minus_1;
   } else if (disc > 0) {
     // Two library calls instead of four: e^{at} and e^{at} − 1 from one
     // exponential, cos(bt) and sin(bt) from the half angle's sine and cosine
     // (which also give cos(bt) − 1 = −2·sin²(bt/2) without cancellation).
-    const double b = std::sqrt(disc), at = a * t;
-    double e = 1, e_minus_1 = 0;
-    if (at != 0) {
-      if (std::abs(at) < 0.5) {  // e − 1 is exact to relative precision here, e too (|at| < 1/2)
-        e_minus_1 = std::expm1(at);
-        e = 1 + e_minus_1;
-      } else {  // e − 1 has no cancellation, and e keeps its relative precision when tiny
-        e = std::exp(at);
-        e_minus_1 = e - 1;
-      }
-    }
+    const double b = std::sqrt(disc);
+    double e, e_minus_1;
+    exponentials(a * t, e, e_minus_1);
     double half_sine, half_cosine;
     ::sincos(0.5 * b * t, &half_sine, &half_cosine);
     const double cosine = (half_cosine - half_sine) * (half_cosine + half_sine);
@@ -65,11 +72,12 @@ void modes(double a, double disc, double t, double& ec, double& es, double* ec_m
     if (ec_minus_1) *ec_minus_1 = e_minus_1 * cosine - 2 * half_sine * half_sine;
   } else {  // written so that nothing overflows: a + g < 0 when κ > 0
     const double g = std::sqrt(-disc);
-    const double slow = std::exp((a + g) * t);
+    double slow, slow_minus_1;
+    exponentials((a + g) * t, slow, slow_minus_1);
     const double fast_ratio = std::expm1(-2 * g * t);  // e^{−2gt} − 1
     ec = slow * (1 + 0.5 * fast_ratio);
     es = slow * (-fast_ratio) / (2 * g);
-    if (ec_minus_1) *ec_minus_1 = std::expm1((a + g) * t) + 0.5 * slow * fast_ratio;
+    if (ec_minus_1) *ec_minus_1 = slow_minus_1 + 0.5 * slow * fast_ratio;
   }
 }
 
