@@ -57,10 +57,22 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
         const LinearForm& form = guards[i].form;
         auto f = [&](double t) { return form.at(segment.state_at(t), t); };
         const double flo = a == t0 ? before[i] : std::max(before[i], 0.0);
+        // Only the first crossing counts: a guard still inside at the earliest
+        // crossing found so far crosses later (no guard re-enters within an
+        // interval), and one that is out there crossed before it.
+        double hi = b, fhi = value;
+        if (first.kind) {
+          fhi = f(first.time);
+          if (fhi > 0 || (fhi == 0 && first.time > a)) {
+            before[i] = value;
+            continue;
+          }
+          hi = first.time;
+        }
         GearState rate;
         const double t =
-            segment.rate_at(b, rate)
-                ? crossing_time(f, a, b, flo, value, [&](double lo, double hi, double flo, double fhi) {
+            segment.rate_at(hi, rate)
+                ? crossing_time(f, a, hi, flo, fhi, [&](double lo, double hi, double flo, double fhi) {
                     auto value_and_slope = [&](double s) {
                       segment.rate_at(s, rate);
                       return std::pair(f(s), form.omega_p * rate.omega_p + form.omega_s * rate.omega_s +
@@ -68,7 +80,7 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
                     };
                     return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
                   })
-                : crossing_time(f, a, b, flo, value, [&](double lo, double hi, double flo, double fhi) {
+                : crossing_time(f, a, hi, flo, fhi, [&](double lo, double hi, double flo, double fhi) {
                     return refine(f, lo, hi, flo, fhi);
                   });
         if (t < first.time || !first.kind) first = {t, guards[i].kind};
