@@ -85,6 +85,7 @@ enum class GuardKind {
   torque_reverses,
   drive_breakpoint,  ///< a corner or step of the drive profile: not a guard, a time event
   damping_capped, damping_uncapped, flanks_part, flanks_press,  ///< the capped law's phases
+  // flanks_press stays last: the event budget counts kinds in an array up to it.
 };
 std::string to_string(GuardKind);
 

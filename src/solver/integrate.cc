@@ -1,9 +1,9 @@
 #include "solver/integrate.h"
 
+#include <array>
 #include <cmath>
 #include <functional>
 #include <fmt/format.h>
-#include <map>
 #include <numbers>
 
 #include "common/error.h"
@@ -40,13 +40,18 @@ class OutputGrid {
 /// faster (Zeno-like chattering), is refused in a fraction of a second
 /// instead of after millions of events.
 class EventBudget {
+  /// Events counted by guard kind, in the enum's order: a fixed array, so
+  /// that counting allocates nothing (a map's nodes cost bild6c 1.4 %).
+  using KindCounts = std::array<std::size_t, static_cast<std::size_t>(GuardKind::flanks_press) + 1>;
+  static std::size_t index(GuardKind k) { return static_cast<std::size_t>(k); }
+
  public:
   explicit EventBudget(const RunSpec& spec)
       : spec_(spec), window_(std::max<std::size_t>(1024, spec.max_events / 64)) {}
 
   void count(const EventRecord& e, const GearModel& model) {
     ++events_;
-    ++kinds_[e.kind];
+    ++kinds_[index(e.kind)];
     const bool contact_change = e.mode_after.contact != e.mode_before.contact;
     // The lock catching the secondary: it ends held as the flanks change.
     const bool lock_stop = model.parameters().self_locking && contact_change &&
@@ -54,11 +59,11 @@ class EventBudget {
     lock_stops_ += lock_stop;
     if (e.t > last_time_ || events_ == 1) {
       stalled_ = 0;
-      stalled_kinds_.clear();
+      stalled_kinds_.fill(0);
       stalled_locks_ = 0;
     } else {  // no time passed since the last event
       ++stalled_;
-      ++stalled_kinds_[e.kind];
+      ++stalled_kinds_[index(e.kind)];
       stalled_locks_ += lock_stop;
       if (stalled_ > 64) stuck(e);
     }
@@ -68,7 +73,7 @@ class EventBudget {
     if (projected(e.t) > 2.0 * spec_.max_events) refuse(e.t);
     window_events_ = events_;
     window_time_ = e.t;
-    kinds_.clear();
+    kinds_.fill(0);
     lock_stops_ = 0;
   }
 
@@ -81,12 +86,12 @@ class EventBudget {
   }
 
   /// "release 50 %, contact+ 50 %": the share of each kind among `total`.
-  static std::string shares(const std::map<GuardKind, std::size_t>& kinds, std::size_t total) {
+  static std::string shares(const KindCounts& kinds, std::size_t total) {
     std::string text;
-    for (const auto& [kind, n] : kinds)
-      if (200 * n >= total)
-        text += fmt::format("{}{} {:.0f} %", text.empty() ? "" : ", ", to_string(kind),
-                            100.0 * n / total);
+    for (std::size_t k = 0; k < kinds.size(); ++k)
+      if (kinds[k] > 0 && 200 * kinds[k] >= total)
+        text += fmt::format("{}{} {:.0f} %", text.empty() ? "" : ", ",
+                            to_string(static_cast<GuardKind>(k)), 100.0 * kinds[k] / total);
     return text;
   }
 
@@ -131,10 +136,10 @@ class EventBudget {
   std::size_t window_;
   std::size_t events_ = 0, window_events_ = 0, lock_stops_ = 0;
   double window_time_ = 0;
-  std::map<GuardKind, std::size_t> kinds_;
+  KindCounts kinds_{};
   double last_time_ = 0;
   std::size_t stalled_ = 0, stalled_locks_ = 0;
-  std::map<GuardKind, std::size_t> stalled_kinds_;
+  KindCounts stalled_kinds_{};
 };
 
 /// Keeps the number of solver steps (the intervals each mode is walked in)
