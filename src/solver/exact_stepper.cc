@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "solver/forced_oscillator.h"
+#include "solver/linear_mode_segment.h"
 #include "solver/segment.h"
 
 namespace gearpatch {
@@ -388,6 +389,9 @@ class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
                                  double t0, double horizon, const std::vector<Guard>& guards) override {
+    // Speed feedback breaks the momentum balance ExactSegment rests on.
+    if (model.parameters().speed_feedback())
+      return make_linear_mode_segment(model, mode, state, t0, horizon, guards);
     return std::make_unique<ExactSegment>(model.dynamics(mode, t0), guards, state, t0, horizon);
   }
 };

@@ -10,6 +10,10 @@
 namespace gearpatch {
 namespace {
 
+constexpr double GearState::*rows[3] = {&GearState::omega_p, &GearState::omega_s, &GearState::dphi};
+
+Vector3 vector(const GearState& x) { return {x.omega_p, x.omega_s, x.dphi}; }
+
 double dot(const LinearForm& f, const GearState& x) {
   return f.omega_p * x.omega_p + f.omega_s * x.omega_s + f.dphi * x.dphi;
 }
@@ -48,7 +52,13 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
   inv_p_ = d.inv_p;
   inv_s_ = d.inv_s;
   gain_s_ = d.gain_s;
-  ramp_closed_form_ = p.forcing_linear_in_modes();
+  ramp_closed_form_ = !p.speed_feedback() && !p.stribeck();
+  if (p.speed_feedback() && !p.stribeck()) {
+    Matrix3 a;
+    for (int i = 0; i < 3; ++i)
+      a[i] = {columns_[0].*rows[i], columns_[1].*rows[i], columns_[2].*rows[i]};
+    growth_.emplace(a);
+  }
   if (d.coupled && weight > 0) {
     kappa_ = weight * d.stiffness;
     delta_ = weight * d.damping;
@@ -90,6 +100,25 @@ ModeExtrema::Point ModeExtrema::at(double t) const {
   return p;
 }
 
+GearState ModeExtrema::times_matrix(const GearState& v) const {
+  GearState r;
+  for (double GearState::*row : rows)
+    r.*row = columns_[0].*row * v.omega_p + columns_[1].*row * v.omega_s + columns_[2].*row * v.dphi;
+  return r;
+}
+
+double ModeExtrema::derivative_bound(const LinearForm& f, const Point& a, const Point& b,
+                                     int order) const {
+  auto derivative = [&](const Point& p) {  // x'' = A·x' + b1, x''' = A·x''
+    GearState y = times_matrix(p.rate);
+    y.omega_p += forcing_rate_.omega_p;
+    return order == 2 ? y : times_matrix(y);
+  };
+  const GrowthBound& g = *growth_;
+  return g.dual({f.omega_p, f.omega_s, f.dphi}) *
+         g.sup(g.norm(vector(derivative(a))), g.norm(vector(derivative(b))), b.t - a.t);
+}
+
 const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
   auto same = [&](const LinearForm& g) {
     return g.omega_p == f.omega_p && g.omega_s == f.omega_s && g.dphi == f.dphi;
@@ -114,6 +143,7 @@ struct ModeExtrema::Search {
   Extremum& peak;
   const Powers& powers;  ///< f's linear part times the mode's matrix, once and twice
   double bend;           ///< σ·g'' of f's polynomial part under a ramp
+  mutable int budget = 256;  ///< bisections left to search_feedback on this interval
 
   Search(const ModeExtrema& m, const LinearForm& f, double sign, Extremum& peak, const Powers& powers)
       : m(m), f(f), sign(sign), peak(peak), powers(powers), bend(sign * m.bend(f)) {}
@@ -152,6 +182,44 @@ struct ModeExtrema::Search {
                          std::max(0.0, 0.5 * bend * span * span);
     // Within rounding of the peak found: nothing to gain there.
     return bound - 1e-12 * (std::abs(line) + radius);
+  }
+
+  /// With speed feedback: sup σ·f on [a, b] from its ends and the sag bound.
+  double sag_bound(const Point& a, const Point& b) const {
+    const double span = b.t - a.t, fa = sign * f(a.state), fb = sign * f(b.state);
+    // Within rounding of the peak found: nothing to gain there (a signal
+    // flat at its running peak would otherwise never be left out).
+    return std::max(fa, fb) + 0.125 * span * span * m.derivative_bound(f, a, b, 2) -
+           1e-12 * (std::abs(fa) + std::abs(fb));
+  }
+
+  /// With speed feedback: a maximum where σ·f' turns from positive to
+  /// negative, on pieces where sup|g'''| proves g'' of one sign (g' monotone,
+  /// so at most one turn), bisected until it does.
+  void search_feedback(const Point& a, const Point& b, int depth) const {
+    if (sag_bound(a, b) <= std::abs(peak.value)) return;
+    consider(a);
+    consider(b);
+    const Values va = values(a), vb = values(b);
+    const double reach = (b.t - a.t) * m.derivative_bound(f, a, b, 3);
+    if (va.g2 >= reach || vb.g2 >= reach || va.g2 <= -reach || vb.g2 <= -reach) {
+      auto slope = [&](double t) { return values(m.at(t)).g1; };
+      if (va.g1 > 0 && vb.g1 < 0) consider(m.at(root(slope, a.t, b.t, va.g1, vb.g1)));
+      return;
+    }
+    const double mid = a.t + 0.5 * (b.t - a.t);
+    // Bisection halves the bounds' reach each time; a few dozen pieces
+    // settle any interval the segment hands out, the budget only stops a
+    // pathological one (then g'' is taken to change sign at most once).
+    if (depth >= 40 || --budget < 0 || !(mid > a.t && mid < b.t)) return monotone_leaf(a, b);
+    const Point c = m.at(mid);
+    if (sag_bound(c, b) > sag_bound(a, c)) {
+      search_feedback(c, b, depth + 1);
+      search_feedback(a, c, depth + 1);
+    } else {
+      search_feedback(a, c, depth + 1);
+      search_feedback(c, b, depth + 1);
+    }
   }
 
   void search(const Point& a, const Point& b) const {
@@ -213,6 +281,16 @@ struct ModeExtrema::Search {
 
 void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
   const Powers& p = powers(f);
+  if (growth_) {
+    const double span = end_.t - start_.t;
+    if (std::max(std::abs(f(start_.state)), std::abs(f(end_.state))) +
+            0.125 * span * span * derivative_bound(f, start_, end_, 2) <=
+        std::abs(peak.value))
+      return;
+    Search(*this, f, 1, peak, p).search_feedback(start_, end_, 0);
+    Search(*this, f, -1, peak, p).search_feedback(start_, end_, 0);
+    return;
+  }
   if (kappa_ > 0) {
     // Both signs' first test at once: σ only flips the signs of f's values,
     // so one evaluation decides both (the common case: no new peak here).
