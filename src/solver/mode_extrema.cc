@@ -67,6 +67,7 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
   // h'' has its zeros π/√disc apart; a window of half that holds at most one.
   quarter_ = disc > 0 ? 0.5 * std::numbers::pi / std::sqrt(disc) : INFINITY;
   start_.t = end_.t = std::numeric_limits<double>::quiet_NaN();
+  for (Point& p : cache_) p.t = std::numeric_limits<double>::quiet_NaN();
 }
 
 void ModeExtrema::walk(double a, double b) {
@@ -75,6 +76,16 @@ void ModeExtrema::walk(double a, double b) {
 }
 
 ModeExtrema::Point ModeExtrema::at(double t) const {
+  if (!growth_) return compute(t);
+  for (const Point& p : cache_)
+    if (p.t == t) return p;
+  const Point p = compute(t);
+  cache_[cache_next_] = p;
+  cache_next_ = (cache_next_ + 1) % cached_points;
+  return p;
+}
+
+ModeExtrema::Point ModeExtrema::compute(double t) const {
   if (!have_ramp_) {  // the segment's piece of the drive profile starts at the first point
     const double slope = model_.parameters().drive_slope(t);
     forcing_rate_ = {inv_p_ * slope, 0, 0};

@@ -50,6 +50,7 @@ class ModeExtrema {
   };
 
   Point at(double t) const;
+  Point compute(double t) const;
   /// The constant g'' of the form's polynomial part under a ramp (0 without one).
   double bend(const LinearForm& f) const { return bend_ * (f.omega_p + f.omega_s); }
   const Powers& powers(const LinearForm& f) const;
@@ -80,6 +81,11 @@ class ModeExtrema {
   /// the sag of sup|g''| and proves g' monotone by sup|g'''|, both from the
   /// growth bound of x'' and x''' (which obey y' = A·y), as the segment does.
   std::optional<GrowthBound> growth_;
+  /// With speed feedback a point costs a matrix exponential, and every form
+  /// and sign bisects at the same times: the last few points are kept.
+  static constexpr int cached_points = 16;
+  mutable Point cache_[cached_points];
+  mutable int cache_next_ = 0;
   GearState times_matrix(const GearState& v) const;
   /// sup |f·y| on [a, b] for y = x'' (order 2) or x''' (order 3).
   double derivative_bound(const LinearForm& f, const Point& a, const Point& b, int order) const;
