@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "solver/forced_oscillator.h"
-#include "solver/linear_mode_segment.h"
 #include "solver/segment.h"
+#include "solver/linear_mode_segment.h"  // modes with speed feedback
 
 namespace gearpatch {
 namespace {
