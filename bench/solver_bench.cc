@@ -1,7 +1,8 @@
 // Speed of the reference solvers: time per impact event of the exact solver,
 // and the adaptive solver on the same run at two tolerances; and the exact
 // solver on each example scene (per run, the output grid cut to the ends);
-// and both solvers on scenes/drive/reversal.ini (a table drive).
+// and both solvers on scenes/drive/reversal.ini (a table drive) and
+// scenes/drive/startup.ini (the motor line and viscous friction).
 // Run: build/gearpatch_bench --benchmark_filter=Solver
 #include <benchmark/benchmark.h>
 
@@ -50,7 +51,9 @@ void SolverExactScene(benchmark::State& state, const char* name) {
 }
 
 /// A scene under scenes/drive/ on either solver: the torque reversal from a
-/// table runs in closed form too (each table corner an event).
+/// table runs in closed form too (each table corner an event), and so does
+/// the start-up on the motor line with viscous friction (speed feedback:
+/// the matrix exponential of LinearModeSegment).
 void SolverDrive(benchmark::State& state, const char* name, SolverKind solver, double tolerance) {
   const Scene scene = load_scene(std::string(GEARPATCH_SOURCE_DIR) + "/scenes/drive/" + name + ".ini");
   run_scene(state, scene, solver, tolerance);
@@ -75,5 +78,9 @@ BENCHMARK_CAPTURE(SolverDrive, reversal_adaptive_1e6, "reversal", SolverKind::ad
 BENCHMARK_CAPTURE(SolverDrive, reversal_adaptive_1e10, "reversal", SolverKind::adaptive, 1e-10)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(SolverDrive, reversal_adaptive_1e12, "reversal", SolverKind::adaptive, 1e-12)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SolverDrive, startup_exact, "startup", SolverKind::exact, 0.0)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(SolverDrive, startup_adaptive_1e10, "startup", SolverKind::adaptive, 1e-10)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK_MAIN();

@@ -4,10 +4,12 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <sys/resource.h>
+#include <vector>
 
 #include "model/gear_model.h"
 #include "solver/forced_oscillator.h"
 #include "solver/integrate.h"
+#include "solver/matrix_exponential.h"
 #include "support.h"
 
 using namespace gearpatch;
@@ -167,5 +169,81 @@ TEST_CASE("the run's peaks from the closed form are the largest values a fine gr
       CHECK(std::abs(peaks[i]->value) >= grid[i] * (1 - 1e-9));
       CHECK(std::abs(peaks[i]->value) <= grid[i] * (1 + 1e-3));
     }
+  }
+}
+
+namespace {
+
+Matrix5 embed(const std::vector<std::vector<double>>& m, double tau) {
+  Matrix5 x{};
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = 0; j < m[i].size(); ++j) x[i][j] = m[i][j] * tau;
+  return x;
+}
+
+/// The largest |F − expected| over the entries, relative to max(1, |expected|).
+double worst_relative(const Matrix5& f, const Matrix5& expected) {
+  double worst = 0;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      worst = std::max(worst, std::abs(f[i][j] - expected[i][j]) / std::max(1.0, std::abs(expected[i][j])));
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("e^M − I matches the closed forms of a damped rotation and a Jordan block", "[solver]") {
+  // [[a, b], [−b, a]]: e^{Mτ} = e^{aτ}·[[cos bτ, sin bτ], [−sin bτ, cos bτ]].
+  const double a = -0.3, b = 7;
+  for (double tau : {1e-3, 0.1, 1.0, 4.0, 20.0}) {
+    INFO("tau = " << tau);
+    const Matrix5 f = expm1(embed({{a, b}, {-b, a}}, tau));
+    const double e = std::exp(a * tau), c = std::cos(b * tau), s = std::sin(b * tau);
+    Matrix5 expected{};
+    expected[0] = {e * c - 1, e * s, 0, 0, 0};
+    expected[1] = {-e * s, e * c - 1, 0, 0, 0};
+    CHECK(worst_relative(f, expected) < 1e-13);
+  }
+  // A defective matrix: λ on the diagonal, 1 above it (critical damping is one).
+  const double lambda = -2;
+  for (double tau : {1e-4, 0.5, 3.0, 12.0}) {
+    INFO("tau = " << tau);
+    const Matrix5 f = expm1(embed({{lambda, 1, 0}, {0, lambda, 1}, {0, 0, lambda}}, tau));
+    const double e = std::exp(lambda * tau);
+    Matrix5 expected{};
+    expected[0] = {e - 1, e * tau, e * tau * tau / 2, 0, 0};
+    expected[1] = {0, e - 1, e * tau, 0, 0};
+    expected[2] = {0, 0, e - 1, 0, 0};
+    CHECK(worst_relative(f, expected) < 1e-13);
+  }
+}
+
+TEST_CASE("e^M − I of a nilpotent matrix is its finite series, and exact to relative precision near 0",
+          "[solver]") {
+  // Free flight without feedback in the augmented form (u' = φ̇p − φ̇s, the
+  // primary under a ramp): M⁴ = 0, e^M − I = M + M²/2 + M³/6.
+  Matrix5 m{};
+  m[2][0] = 1.5, m[2][1] = -1, m[0][3] = 0.25, m[1][3] = -3, m[0][4] = 2, m[4][3] = 1;
+  for (double tau : {1e-9, 1.0, 1e3}) {
+    Matrix5 scaled{};
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) scaled[i][j] = m[i][j] * tau;
+    const Matrix5 square = multiply(scaled, scaled), cube = multiply(square, scaled);
+    REQUIRE(multiply(cube, scaled) == Matrix5{});
+    Matrix5 expected{};
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) expected[i][j] = scaled[i][j] + square[i][j] / 2 + cube[i][j] / 6;
+    const Matrix5 f = expm1(scaled);
+    for (int i = 0; i < 5; ++i)
+      for (int j = 0; j < 5; ++j) CHECK(f[i][j] == Approx(expected[i][j]).epsilon(1e-15).margin(0));
+  }
+  // A tiny τ: every entry of e^{Mτ} − I to relative precision (e^{Mτ} − I
+  // from e^{Mτ} would keep none of its digits below 1e-16).
+  const std::vector<std::vector<double>> a = {{-0.1, 0.1, -100}, {0.1, -0.5, 100}, {1, -1, 0}};
+  for (double tau : {1e-12, 1e-20}) {
+    const Matrix5 x = embed(a, tau), f = expm1(x), square = multiply(x, x), cube = multiply(square, x);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        CHECK(f[i][j] == Approx(x[i][j] + square[i][j] / 2 + cube[i][j] / 6).epsilon(1e-15));
   }
 }

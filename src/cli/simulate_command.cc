@@ -17,7 +17,8 @@ int run_simulate(const std::vector<std::string>& args) {
   po::options_description options("simulate options");
   options.add_options()
       ("solver", po::value<std::string>()->default_value("exact"),
-       "exact: closed form per mode, exact to rounding (default); adaptive: "
+       "exact: closed form per mode, exact to rounding (default; Stribeck friction, "
+       "not linear, runs on the adaptive solver, which the summary names); adaptive: "
        "Dormand-Prince 5(4) with dense output, error set by --rtol")
       ("rtol", po::value<double>()->default_value(1e-10), "tolerance of the adaptive solver, 1e-14 … 0.1")
       ("dt", po::value<double>(), "output step in s, > 0 (default: scene's run.output_step, or duration/2000 and at least 20 a contact period)")

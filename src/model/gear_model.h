@@ -53,12 +53,12 @@ struct GearParameters {
   double next_breakpoint(double t) const { return drive_profile.next_breakpoint(t); }
   /// The feedback of φ̇p on the primary's torque: the motor line's fall plus viscous friction.
   double primary_speed_feedback() const { return motor_slope + viscous_primary; }
-  /// True when every mode is linear with forcing linear in time, which the
-  /// exact solver integrates in closed form: drive steps, ramps and tables,
-  /// but no motor line or viscous friction (those run on the adaptive solver).
-  bool forcing_linear_in_modes() const {
-    return primary_speed_feedback() == 0 && viscous_secondary == 0 && !stribeck();
-  }
+  /// The motor line or viscous friction: torques proportional to a shaft's speed.
+  bool speed_feedback() const { return primary_speed_feedback() != 0 || viscous_secondary != 0; }
+  /// True when every mode is linear with forcing polynomial in time, which the
+  /// exact solver integrates in closed form: drive steps, ramps and tables, the
+  /// motor line and viscous friction; not Stribeck bearings (the adaptive solver's).
+  bool modes_linear() const { return !stribeck(); }
   bool primary_has_friction() const { return bearing_primary > 0; }
   bool secondary_has_friction() const {
     return bearing_secondary > 0 || tooth_friction > 0 || self_locking;

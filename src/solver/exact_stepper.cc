@@ -11,6 +11,7 @@
 #include "solver/forced_oscillator.h"
 #include "solver/newton_root.h"
 #include "solver/segment.h"
+#include "solver/linear_mode_segment.h"  // modes with speed feedback
 
 namespace gearpatch {
 namespace {
@@ -408,6 +409,9 @@ class ExactStepper : public Stepper {
  public:
   std::unique_ptr<Segment> start(const GearModel& model, const Mode& mode, const GearState& state,
                                  double t0, double horizon, const std::vector<Guard>& guards) override {
+    // Speed feedback breaks the momentum balance ExactSegment rests on.
+    if (model.parameters().speed_feedback())
+      return make_linear_mode_segment(model, mode, state, t0, horizon, guards);
     return std::make_unique<ExactSegment>(model.dynamics(mode, t0), guards, state, t0, horizon);
   }
 };

@@ -317,18 +317,13 @@ std::string undersampling_warning(const GearParameters& p, const RunSpec& spec,
 }
 
 std::string adaptive_reason(const GearParameters& p) {
-  std::string why;
-  auto add = [&](bool used, const char* what) {
-    if (used) why += (why.empty() ? "" : ", ") + std::string(what);
-  };
-  add(p.motor_slope > 0, "the motor line");
-  add(p.viscous_primary > 0 || p.viscous_secondary > 0, "viscous friction");
-  add(p.stribeck(), "Stribeck friction");
-  return why.empty() ? why : "the exact solver integrates forcing linear in time only; this scene has " + why;
+  return p.modes_linear() ? std::string()
+                          : "the exact solver integrates modes that are linear in the state only; "
+                            "this scene has Stribeck friction";
 }
 
 std::unique_ptr<Stepper> make_reference_stepper(const GearParameters& p, double tolerance) {
-  return p.forcing_linear_in_modes() ? make_exact_stepper() : make_adaptive_stepper(tolerance);
+  return p.modes_linear() ? make_exact_stepper() : make_adaptive_stepper(tolerance);
 }
 
 SolverKind parse_solver(const std::string& name) {
@@ -340,10 +335,10 @@ SolverKind parse_solver(const std::string& name) {
 Trajectory simulate(const GearModel& model, const GearState& initial, const RunSpec& spec,
                     SolverKind solver, double tolerance) {
   Trajectory trajectory;
-  if (solver == SolverKind::exact && !model.parameters().forcing_linear_in_modes()) {
-    // The motor line, viscous friction or Stribeck: the modes are no longer
-    // integrated in closed form; the same guards and event location run on
-    // the adaptive solver, and the output says so.
+  if (solver == SolverKind::exact && !model.parameters().modes_linear()) {
+    // Stribeck bearings: the modes are no longer linear, so not integrated in
+    // closed form; the same guards and event location run on the adaptive
+    // solver, and the output says so.
     solver = SolverKind::adaptive;
     trajectory.solver_note = adaptive_reason(model.parameters());
   }

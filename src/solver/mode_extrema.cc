@@ -12,6 +12,10 @@
 namespace gearpatch {
 namespace {
 
+constexpr double GearState::*rows[3] = {&GearState::omega_p, &GearState::omega_s, &GearState::dphi};
+
+Vector3 vector(const GearState& x) { return {x.omega_p, x.omega_s, x.dphi}; }
+
 double dot(const LinearForm& f, const GearState& x) {
   return f.omega_p * x.omega_p + f.omega_s * x.omega_s + f.dphi * x.dphi;
 }
@@ -50,7 +54,13 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
   inv_p_ = d.inv_p;
   inv_s_ = d.inv_s;
   gain_s_ = d.gain_s;
-  ramp_closed_form_ = p.forcing_linear_in_modes();
+  ramp_closed_form_ = !p.speed_feedback() && !p.stribeck();
+  if (p.speed_feedback() && !p.stribeck()) {
+    Matrix3 a;
+    for (int i = 0; i < 3; ++i)
+      a[i] = {columns_[0].*rows[i], columns_[1].*rows[i], columns_[2].*rows[i]};
+    growth_.emplace(a);
+  }
   if (d.coupled && weight > 0) {
     kappa_ = weight * d.stiffness;
     delta_ = weight * d.damping;
@@ -59,6 +69,7 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
   // h'' has its zeros π/√disc apart; a window of half that holds at most one.
   quarter_ = disc > 0 ? 0.5 * std::numbers::pi / std::sqrt(disc) : INFINITY;
   start_.t = end_.t = std::numeric_limits<double>::quiet_NaN();
+  for (Point& p : cache_) p.t = std::numeric_limits<double>::quiet_NaN();
 }
 
 void ModeExtrema::walk(double a, double b) {
@@ -67,6 +78,16 @@ void ModeExtrema::walk(double a, double b) {
 }
 
 ModeExtrema::Point ModeExtrema::at(double t) const {
+  if (!growth_) return compute(t);
+  for (const Point& p : cache_)
+    if (p.t == t) return p;
+  const Point p = compute(t);
+  cache_[cache_next_] = p;
+  cache_next_ = (cache_next_ + 1) % cached_points;
+  return p;
+}
+
+ModeExtrema::Point ModeExtrema::compute(double t) const {
   if (!have_ramp_) {  // the segment's piece of the drive profile starts at the first point
     const double slope = model_.parameters().drive_slope(t);
     forcing_rate_ = {inv_p_ * slope, 0, 0};
@@ -90,6 +111,25 @@ ModeExtrema::Point ModeExtrema::at(double t) const {
   };
   p.rate = {row(&GearState::omega_p), row(&GearState::omega_s), row(&GearState::dphi)};
   return p;
+}
+
+GearState ModeExtrema::times_matrix(const GearState& v) const {
+  GearState r;
+  for (double GearState::*row : rows)
+    r.*row = columns_[0].*row * v.omega_p + columns_[1].*row * v.omega_s + columns_[2].*row * v.dphi;
+  return r;
+}
+
+double ModeExtrema::derivative_bound(const LinearForm& f, const Point& a, const Point& b,
+                                     int order) const {
+  auto derivative = [&](const Point& p) {  // x'' = A·x' + b1, x''' = A·x''
+    GearState y = times_matrix(p.rate);
+    y.omega_p += forcing_rate_.omega_p;
+    return order == 2 ? y : times_matrix(y);
+  };
+  const GrowthBound& g = *growth_;
+  return g.dual({f.omega_p, f.omega_s, f.dphi}) *
+         g.sup(g.norm(vector(derivative(a))), g.norm(vector(derivative(b))), b.t - a.t);
 }
 
 const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
@@ -116,6 +156,7 @@ struct ModeExtrema::Search {
   Extremum& peak;
   const Powers& powers;  ///< f's linear part times the mode's matrix, once and twice
   double bend;           ///< σ·g'' of f's polynomial part under a ramp
+  mutable int budget = 256;  ///< bisections left to search_feedback on this interval
 
   Search(const ModeExtrema& m, const LinearForm& f, double sign, Extremum& peak, const Powers& powers)
       : m(m), f(f), sign(sign), peak(peak), powers(powers), bend(sign * m.bend(f)) {}
@@ -154,6 +195,44 @@ struct ModeExtrema::Search {
                          std::max(0.0, 0.5 * bend * span * span);
     // Within rounding of the peak found: nothing to gain there.
     return bound - 1e-12 * (std::abs(line) + radius);
+  }
+
+  /// With speed feedback: sup σ·f on [a, b] from its ends and the sag bound.
+  double sag_bound(const Point& a, const Point& b) const {
+    const double span = b.t - a.t, fa = sign * f(a.state), fb = sign * f(b.state);
+    // Within rounding of the peak found: nothing to gain there (a signal
+    // flat at its running peak would otherwise never be left out).
+    return std::max(fa, fb) + 0.125 * span * span * m.derivative_bound(f, a, b, 2) -
+           1e-12 * (std::abs(fa) + std::abs(fb));
+  }
+
+  /// With speed feedback: a maximum where σ·f' turns from positive to
+  /// negative, on pieces where sup|g'''| proves g'' of one sign (g' monotone,
+  /// so at most one turn), bisected until it does.
+  void search_feedback(const Point& a, const Point& b, int depth) const {
+    if (sag_bound(a, b) <= std::abs(peak.value)) return;
+    consider(a);
+    consider(b);
+    const Values va = values(a), vb = values(b);
+    const double reach = (b.t - a.t) * m.derivative_bound(f, a, b, 3);
+    if (va.g2 >= reach || vb.g2 >= reach || va.g2 <= -reach || vb.g2 <= -reach) {
+      auto slope = [&](double t) { return values(m.at(t)).g1; };
+      if (va.g1 > 0 && vb.g1 < 0) consider(m.at(root(slope, a.t, b.t, va.g1, vb.g1)));
+      return;
+    }
+    const double mid = a.t + 0.5 * (b.t - a.t);
+    // Bisection halves the bounds' reach each time; a few dozen pieces
+    // settle any interval the segment hands out, the budget only stops a
+    // pathological one (then g'' is taken to change sign at most once).
+    if (depth >= 40 || --budget < 0 || !(mid > a.t && mid < b.t)) return monotone_leaf(a, b);
+    const Point c = m.at(mid);
+    if (sag_bound(c, b) > sag_bound(a, c)) {
+      search_feedback(c, b, depth + 1);
+      search_feedback(a, c, depth + 1);
+    } else {
+      search_feedback(a, c, depth + 1);
+      search_feedback(c, b, depth + 1);
+    }
   }
 
   void search(const Point& a, const Point& b) const {
@@ -222,6 +301,16 @@ struct ModeExtrema::Search {
 
 void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
   const Powers& p = powers(f);
+  if (growth_) {
+    const double span = end_.t - start_.t;
+    if (std::max(std::abs(f(start_.state)), std::abs(f(end_.state))) +
+            0.125 * span * span * derivative_bound(f, start_, end_, 2) <=
+        std::abs(peak.value))
+      return;
+    Search(*this, f, 1, peak, p).search_feedback(start_, end_, 0);
+    Search(*this, f, -1, peak, p).search_feedback(start_, end_, 0);
+    return;
+  }
   if (kappa_ > 0) {
     // Both signs' first test at once: σ only flips the signs of f's values,
     // so one evaluation decides both (the common case: no new peak here).

@@ -1,5 +1,8 @@
 #pragma once
+#include <optional>
+
 #include "model/gear_model.h"
+#include "solver/linear_mode.h"
 #include "solver/segment.h"
 
 namespace gearpatch {
@@ -47,6 +50,7 @@ class ModeExtrema {
   };
 
   Point at(double t) const;
+  Point compute(double t) const;
   /// The constant g'' of the form's polynomial part under a ramp (0 without one).
   double bend(const LinearForm& f) const { return bend_ * (f.omega_p + f.omega_s); }
   const Powers& powers(const LinearForm& f) const;
@@ -72,6 +76,19 @@ class ModeExtrema {
   mutable double bend_ = 0;
   double inv_p_ = 0, inv_s_ = 0, gain_s_ = 1;
   bool ramp_closed_form_ = false;  ///< no speed feedback: x_p'' is λ·(1, 1, 0)
+  /// With speed feedback (the motor line, viscous friction) a form is no
+  /// longer a line plus a free damped oscillation: the search bounds it by
+  /// the sag of sup|g''| and proves g' monotone by sup|g'''|, both from the
+  /// growth bound of x'' and x''' (which obey y' = A·y), as the segment does.
+  std::optional<GrowthBound> growth_;
+  /// With speed feedback a point costs a matrix exponential, and every form
+  /// and sign bisects at the same times: the last few points are kept.
+  static constexpr int cached_points = 16;
+  mutable Point cache_[cached_points];
+  mutable int cache_next_ = 0;
+  GearState times_matrix(const GearState& v) const;
+  /// sup |f·y| on [a, b] for y = x'' (order 2) or x''' (order 3).
+  double derivative_bound(const LinearForm& f, const Point& a, const Point& b, int order) const;
 };
 
 }  // namespace gearpatch
