@@ -103,6 +103,15 @@ class LinearModeSegment : public Segment {
     return {s0_.omega_p + d[0], s0_.omega_s + d[1], s0_.dphi + d[2]};
   }
 
+  /// x' = x'(0) + A·(x − x0) + f1·τ, from the same closed form (u' = Δφ').
+  bool rate_at(double t, GearState& rate) const override {
+    const double tau = t - t0_;
+    const Vector3 ad = times(system_.a, delta(tau));
+    rate = {rate0_[0] + ad[0] + system_.f1[0] * tau, rate0_[1] + ad[1] + system_.f1[1] * tau,
+            rate0_[2] + ad[2] + system_.f1[2] * tau};
+    return true;
+  }
+
  private:
   /// x(τ) − x0 = rows 0–2 of (e^{Bτ} − I)·(x0, 1, 0); the last one is kept,
   /// since the event locator asks for the state at each interval end.

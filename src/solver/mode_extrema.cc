@@ -60,6 +60,9 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
     for (int i = 0; i < 3; ++i)
       a[i] = {columns_[0].*rows[i], columns_[1].*rows[i], columns_[2].*rows[i]};
     growth_.emplace(a);
+    Point unknown{};
+    unknown.t = std::numeric_limits<double>::quiet_NaN();
+    cache_.assign(cached_points, unknown);
   }
   if (d.coupled && weight > 0) {
     kappa_ = weight * d.stiffness;
@@ -69,7 +72,6 @@ ModeExtrema::ModeExtrema(const GearModel& model, const Mode& mode, const Segment
   // h'' has its zeros π/√disc apart; a window of half that holds at most one.
   quarter_ = disc > 0 ? 0.5 * std::numbers::pi / std::sqrt(disc) : INFINITY;
   start_.t = end_.t = std::numeric_limits<double>::quiet_NaN();
-  for (Point& p : cache_) p.t = std::numeric_limits<double>::quiet_NaN();
 }
 
 void ModeExtrema::walk(double a, double b) {

@@ -1,5 +1,6 @@
 #pragma once
 #include <optional>
+#include <vector>
 
 #include "model/gear_model.h"
 #include "solver/linear_mode.h"
@@ -83,8 +84,10 @@ class ModeExtrema {
   std::optional<GrowthBound> growth_;
   /// With speed feedback a point costs a matrix exponential, and every form
   /// and sign bisects at the same times: the last few points are kept.
+  /// (Sized only with speed feedback: an array here cost every other scene 2 %
+  /// in constructing it per segment.)
   static constexpr int cached_points = 16;
-  mutable Point cache_[cached_points];
+  mutable std::vector<Point> cache_;
   mutable int cache_next_ = 0;
   GearState times_matrix(const GearState& v) const;
   /// sup |f·y| on [a, b] for y = x'' (order 2) or x''' (order 3).
