@@ -74,6 +74,10 @@ struct LinearForm {
     return omega_p * s.omega_p + omega_s * s.omega_s + dphi * s.dphi + constant;
   }
   double at(const GearState& s, double t) const { return (*this)(s) + time * t; }
+  /// The form's time derivative along a solution whose state changes at `rate`.
+  double rate(const GearState& rate) const {
+    return omega_p * rate.omega_p + omega_s * rate.omega_s + dphi * rate.dphi + time;
+  }
 };
 
 /// What ends a mode: the mode is valid while the guard's form is >= 0.

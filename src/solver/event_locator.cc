@@ -41,6 +41,8 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
                                const std::function<void(double, double)>& on_interval) {
   boost::container::small_vector<double, 10> before(guards.size());  // no heap per segment
   const GearState start = segment.state_at(t0);
+  GearState rate;  // where the segment has its rate in closed form, crossings are refined by Newton
+  const bool newton = segment.rate_at(t0, rate);
   for (std::size_t i = 0; i < guards.size(); ++i) before[i] = guards[i].form.at(start, t0);
   double a = t0;
   for (;;) {
@@ -69,20 +71,15 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
           }
           hi = first.time;
         }
-        GearState rate;
-        const double t =
-            segment.rate_at(hi, rate)
-                ? crossing_time(f, a, hi, flo, fhi, [&](double lo, double hi, double flo, double fhi) {
-                    auto value_and_slope = [&](double s) {
-                      segment.rate_at(s, rate);
-                      return std::pair(f(s), form.omega_p * rate.omega_p + form.omega_s * rate.omega_s +
-                                                 form.dphi * rate.dphi + form.time);
-                    };
-                    return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
-                  })
-                : crossing_time(f, a, hi, flo, fhi, [&](double lo, double hi, double flo, double fhi) {
-                    return refine(f, lo, hi, flo, fhi);
-                  });
+        auto refine_on = [&](double lo, double hi, double flo, double fhi) {
+          if (!newton) return refine(f, lo, hi, flo, fhi);
+          auto value_and_slope = [&](double s) {
+            segment.rate_at(s, rate);
+            return std::pair(f(s), form.rate(rate));
+          };
+          return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
+        };
+        const double t = crossing_time(f, a, hi, flo, fhi, refine_on);
         if (t < first.time || !first.kind) first = {t, guards[i].kind};
       }
       before[i] = value;

@@ -2,13 +2,12 @@
 
 #include <algorithm>
 #include <boost/container/small_vector.hpp>
-#include <boost/math/tools/roots.hpp>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 #include "solver/linear_mode.h"
 #include "solver/matrix_exponential.h"
+#include "solver/newton_root.h"
 
 namespace gearpatch {
 namespace {
@@ -192,8 +191,11 @@ class LinearModeSegment : public Segment {
     if (va.g2 <= -reach || vb.g2 <= -reach) return b;
     if (va.g2 >= reach || vb.g2 >= reach) {  // convex: g falls, then rises
       if (!(va.g1 < 0 && vb.g1 > 0)) return b;
-      const Point m = point(root([&](double tau) { return values(g, point(tau)).g1; }, a.tau, b.tau,
-                                 va.g1, vb.g1));
+      auto slope = [&](double tau) {
+        const Values v = values(g, point(tau));
+        return std::pair(v.g1, v.g2);
+      };
+      const Point m = point(bracketed_newton(slope, a.tau, b.tau, va.g1, vb.g1));
       const double low = values(g, m).g;
       // Cut only at a dip that may go below zero and is deeper than rounding:
       // a guard that starts on its boundary with g' = 0 to rounding (a shaft
@@ -209,14 +211,6 @@ class LinearModeSegment : public Segment {
     if (left.tau < c.tau) return left;
     if (values(g, c).g < 0) return c;  // the crossing is in [a, c]
     return check(g, c, b, depth + 1);
-  }
-
-  /// A root of f between lo and hi, where f changes sign (TOMS 748).
-  template <class F>
-  static double root(F f, double lo, double hi, double flo, double fhi) {
-    std::uintmax_t iterations = 100;
-    boost::math::tools::eps_tolerance<double> tolerance(std::numeric_limits<double>::digits - 3);
-    return boost::math::tools::toms748_solve(f, lo, hi, flo, fhi, tolerance, iterations).second;
   }
 
   /// Bisections per guard and interval: 2^−30 of a step resolves any dip

@@ -14,7 +14,6 @@ using Matrix5 = std::array<std::array<double, 5>, 5>;
 Matrix5 expm1(const Matrix5& m);
 
 /// The plain matrix product.
-
 Matrix5 multiply(const Matrix5& a, const Matrix5& b);
 
 }  // namespace gearpatch

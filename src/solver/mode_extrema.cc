@@ -218,8 +218,11 @@ struct ModeExtrema::Search {
     const Values va = values(a), vb = values(b);
     const double reach = (b.t - a.t) * m.derivative_bound(f, a, b, 3);
     if (va.g2 >= reach || vb.g2 >= reach || va.g2 <= -reach || vb.g2 <= -reach) {
-      auto slope = [&](double t) { return values(m.at(t)).g1; };
-      if (va.g1 > 0 && vb.g1 < 0) consider(m.at(root(slope, a.t, b.t, va.g1, vb.g1)));
+      auto slope = [&](double t) {
+        const Values v = values(m.at(t));
+        return std::pair(v.g1, v.g2);
+      };
+      if (va.g1 > 0 && vb.g1 < 0) consider(m.at(bracketed_newton(slope, a.t, b.t, va.g1, vb.g1)));
       return;
     }
     const double mid = a.t + 0.5 * (b.t - a.t);
