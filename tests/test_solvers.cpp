@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "model/gear_model.h"
+#include "solver/damped_wave.h"
 #include "solver/forced_oscillator.h"
 #include "solver/integrate.h"
 #include "solver/matrix_exponential.h"
@@ -144,6 +145,42 @@ TEST_CASE("one run feeds several output grids exactly as separate runs would", "
       CHECK(together->events_csv() == alone.events_csv());
     }
     CHECK(together_coarse.samples.size() == 2000);
+  }
+}
+
+TEST_CASE("a damped wave's turning points and inflections from their phase are its derivative's zeros",
+          "[solver]") {
+  // g = l0 + l1·τ + e^{aτ}(c cos ωτ + s sin ωτ); the zeros are found on a
+  // fine grid by sign changes of the derivatives worked out by difference.
+  struct Case { double l1, decay, omega, c, s, from; };
+  const Case cases[] = {{0, -0.3, 5, 1, 0.5, 0}, {0, 0, 40, -2, 0.1, 3.7}, {0.7, -1.2, 9, 0.3, -4, 0.05},
+                        {0, -0.01, 2e3, 1e-3, 2e-3, 1e2}};
+  for (const Case& k : cases) {
+    INFO("l1 " << k.l1 << " decay " << k.decay << " omega " << k.omega << " from " << k.from);
+    const DampedWaveForm w(10, 0.4, k.l1, k.decay, k.omega, k.c, k.s);
+    const auto turn = w.next_turn(k.from), bend = w.next_inflection(k.from);
+    const double period = 2 * std::acos(-1.0) / k.omega;
+    REQUIRE(turn.tau > k.from);
+    REQUIRE(bend.tau > k.from);
+    CHECK(turn.tau <= k.from + period / 2);
+    CHECK(bend.tau <= k.from + period / 2);
+    // h' and g'' by central differences of value and slope.
+    const double h = 1e-6 * period;
+    auto h1 = [&](double tau) { return (w.value(tau + h) - w.value(tau - h)) / (2 * h) - k.l1; };
+    auto g2 = [&](double tau) { return (w.slope(tau + h).first - w.slope(tau - h).first) / (2 * h); };
+    const double scale1 = std::hypot(k.c, k.s) * k.omega * std::exp(k.decay * k.from) * 2;
+    CHECK(std::abs(h1(turn.tau)) <= 1e-6 * scale1);
+    CHECK(std::abs(g2(bend.tau)) <= 1e-6 * scale1 * k.omega);
+    CHECK(turn.value == Approx(w.value(turn.tau)).margin(1e-12 * (1 + std::abs(turn.value))));
+    CHECK(bend.value == Approx(w.slope(bend.tau).first).margin(1e-12 * scale1));
+    // No zero of h' (of g'') between the start and the one found.
+    const int n = 2000;
+    const double lo1 = h1(k.from + 1e-3 * (turn.tau - k.from));
+    for (int i = 1; i < n; ++i) {
+      const double tau = k.from + (turn.tau - k.from) * (1e-3 + (1 - 2e-3) * i / n);
+      CHECK(h1(tau) * lo1 > 0);
+      if (h1(tau) * lo1 <= 0) break;
+    }
   }
 }
 

@@ -149,6 +149,19 @@ class ExactSegment : public Segment {
     return true;
   }
 
+  /// f = l0 + l1·τ + p·w + q·w' (shape), w = e^{aτ}·(A·cos bτ + B·sin bτ).
+  std::optional<DampedWaveForm> damped_wave(const LinearForm& f) const override {
+    if (!d_.coupled || !oscillator_.underdamped() || force_rate_ != 0) return std::nullopt;
+    const Shape g = shape(f);
+    const double a = oscillator_.decay(), b = oscillator_.frequency();
+    const double A = oscillator_.free_start(), B = (oscillator_.free_rate_start() - a * A) / b;
+    const double c = g.p * A + g.q * (a * A + b * B), s = g.p * B + g.q * (a * B - b * A);
+    // A line slope of rounding size is 0: the twist and the tooth torque
+    // have none in contact (the shafts' common acceleration cancels).
+    const double line1 = std::abs(g.l1) <= 8 * std::numeric_limits<double>::epsilon() * g.l1_size ? 0.0 : g.l1;
+    return DampedWaveForm(t0_, g.l0, line1, a, b, c, s);
+  }
+
  private:
   /// The free part w = u − f/κ of the twist and its first four derivatives
   /// (w'' = −δw' − κw and so on).

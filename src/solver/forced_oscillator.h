@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 
 namespace gearpatch {
 
@@ -40,6 +41,12 @@ class ForcedOscillator {
   /// The time of u's extremum in free flight with constant forcing (negative if none ahead).
   double vertex() const;
   bool underdamped() const { return kappa_ > 0 && disc_ > 0; }
+  /// The free part w = e^{at}·(w(0)·cos bt + …): its decay a = −δ/2, its
+  /// angular frequency b (when underdamped) and its start w(0), w'(0).
+  double decay() const { return decay_; }
+  double frequency() const { return std::sqrt(disc_); }
+  double free_start() const { return u0_ - rest_; }
+  double free_rate_start() const { return w_rate0_; }
 
  private:
   double kappa_, delta_, force_, u0_, v0_, force_rate_;

@@ -147,7 +147,17 @@ const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
   slot.f = f;
   slot.r2 = times_matrix(f);
   slot.r3 = times_matrix(slot.r2);
+  slot.wave.reset();
+  slot.wave_asked = false;
   return slot;
+}
+
+const DampedWaveForm* ModeExtrema::wave(const Powers& p) const {
+  if (!p.wave_asked) {
+    if (kappa_ > 0 && !growth_) p.wave = segment_.damped_wave(p.f);
+    p.wave_asked = true;
+  }
+  return p.wave ? &*p.wave : nullptr;
 }
 
 /// The search for the largest σ·f on [a, b] above the peak found so far.
@@ -172,9 +182,9 @@ struct ModeExtrema::Search {
     return {sign * f(p.state), sign * dot(f, p.rate), sign * g2, sign * g3};
   }
 
-  void consider(const Point& p) const {
-    const double v = f(p.state);
-    if (std::abs(v) > std::abs(peak.value)) peak = {p.t, v};
+  void consider(const Point& p) const { consider(p.t, f(p.state)); }
+  void consider(double t, double v) const {
+    if (std::abs(v) > std::abs(peak.value)) peak = {t, v};
   }
 
   /// sup σ·f on [p.t, end]: the line l0 + l1·t at its higher end plus the
@@ -261,6 +271,7 @@ struct ModeExtrema::Search {
   /// found between the ends when their slopes show one, else on each side of
   /// the zero of g'' where the slope does not keep one sign.
   void leaf(const Point& a, const Point& b) const {
+    if (const DampedWaveForm* w = m.wave(powers)) return wave_leaf(*w, a, b);
     // Under a ramp g'' = bend + h'' may change sign twice; g''' = h''' changes
     // sign at most once here, and on each side of its zero g'' is monotone.
     if (bend != 0) {
@@ -274,6 +285,33 @@ struct ModeExtrema::Search {
       }
     }
     monotone_leaf(a, b);
+  }
+
+  /// leaf along an oscillating segment: g'' = h'' has at most one zero
+  /// here, at its known phase; on each side g' is monotone, and a maximum of
+  /// σ·f is where σ·g' turns from positive to negative, found by Newton's
+  /// method on the form alone.
+  void wave_leaf(const DampedWaveForm& w, const Point& a, const Point& b) const {
+    consider(a);
+    consider(b);
+    const double ta = a.t - w.origin(), tb = b.t - w.origin();
+    const double sa = values(a).g1, sb = values(b).g1;
+    auto slope = [&](double tau) {
+      const auto [g1, g2] = w.slope(tau);
+      return std::pair(sign * g1, sign * g2);
+    };
+    auto piece = [&](double lo, double hi, double slo, double shi) {
+      if (!(slo > 0 && shi < 0)) return;
+      const double tau = bracketed_newton(slope, lo, hi, slo, shi);
+      consider(w.origin() + tau, w.value(tau));
+    };
+    const DampedWaveForm::Point bend = w.next_inflection(ta);
+    if (bend.tau < tb) {
+      piece(ta, bend.tau, sa, sign * bend.value);
+      piece(bend.tau, tb, sign * bend.value, sb);
+    } else {
+      piece(ta, tb, sa, sb);
+    }
   }
 
   /// leaf where g'' changes sign at most once.
@@ -304,6 +342,21 @@ struct ModeExtrema::Search {
   }
 };
 
+void ModeExtrema::raise_flat(const DampedWaveForm& w, const LinearForm& f, Extremum& peak) const {
+  auto consider = [&](double t, double v) {
+    if (std::abs(v) > std::abs(peak.value)) peak = {t, v};
+  };
+  consider(start_.t, f(start_.state));
+  consider(end_.t, f(end_.state));
+  // |h| never grows (a <= 0): past the first turn of each sign none is higher.
+  const double ta = start_.t - w.origin(), tb = end_.t - w.origin();
+  const DampedWaveForm::Point first = w.next_turn(ta);
+  if (!(first.tau < tb)) return;
+  consider(w.origin() + first.tau, first.value);
+  const DampedWaveForm::Point second = w.next_turn(first.tau);
+  if (second.tau < tb) consider(w.origin() + second.tau, second.value);
+}
+
 void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
   const Powers& p = powers(f);
   if (growth_) {
@@ -330,6 +383,8 @@ void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
         Search::bound_from(*this, negated, span, -c2) <= reached)
       return;
   }
+  const DampedWaveForm* w = wave(p);
+  if (w && w->line_slope() == 0) return raise_flat(*w, f, peak);
   Search(*this, f, 1, peak, p).search(start_, end_);
   Search(*this, f, -1, peak, p).search(start_, end_);
 }

@@ -48,6 +48,10 @@ class ModeExtrema {
   /// for every interval of the segment, so worked out once per form.
   struct Powers {
     LinearForm f, r2, r3;
+    /// f along an oscillating segment, if it is one: made when a search
+    /// first needs it (most intervals are left out by the bound alone).
+    mutable std::optional<DampedWaveForm> wave;
+    mutable bool wave_asked = false;
   };
 
   Point at(double t) const;
@@ -55,6 +59,10 @@ class ModeExtrema {
   /// The constant g'' of the form's polynomial part under a ramp (0 without one).
   double bend(const LinearForm& f) const { return bend_ * (f.omega_p + f.omega_s); }
   const Powers& powers(const LinearForm& f) const;
+  const DampedWaveForm* wave(const Powers& p) const;
+  /// raise for a form with no line slope along an oscillating segment: the
+  /// largest |f| is at an end or at one of the first two turning points.
+  void raise_flat(const DampedWaveForm& w, const LinearForm& f, Extremum& peak) const;
 
   const GearModel& model_;
   Mode mode_;

@@ -1,8 +1,10 @@
 #pragma once
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "model/gear_model.h"
+#include "solver/damped_wave.h"
 
 namespace gearpatch {
 
@@ -19,6 +21,10 @@ class Segment {
   /// form (the event locator then refines a crossing by Newton's method
   /// instead of TOMS 748 on the values alone); false where it does not.
   virtual bool rate_at(double /*t*/, GearState& /*rate*/) const { return false; }
+  /// The form `f` of the state along this segment as a line plus a damped
+  /// cosine, where the mode oscillates with constant forcing (the peak
+  /// search then finds turning points from their phase); empty elsewhere.
+  virtual std::optional<DampedWaveForm> damped_wave(const LinearForm& /*f*/) const { return std::nullopt; }
 };
 
 /// Makes the segment of one mode; the exact solver and the adaptive one are
