@@ -21,12 +21,18 @@ double refine(const F& f, double lo, double hi, double flo, double fhi) {
   return 0.5 * (a + b);
 }
 
-/// The crossing time of a guard that is >= 0 at `lo` (or on its boundary at
-/// the segment start) and negative at `hi`, refined by `refine_on(lo, hi, flo, fhi)`.
-template <class F, class Refine>
-double crossing_time(const F& f, double lo, double hi, double flo, double fhi, const Refine& refine_on) {
+/// The crossing time of a guard that is >= 0 at `lo` (or on its boundary
+/// there) and negative at `hi`, refined by `refine_on(lo, hi, flo, fhi)`;
+/// `leaving(lo)` tells whether a guard on its boundary at lo leaves at once.
+template <class F, class Refine, class Leaving>
+double crossing_time(const F& f, double lo, double hi, double flo, double fhi, const Refine& refine_on,
+                     const Leaving& leaving) {
   if (fhi == 0) return hi;
   if (flo > 0) return refine_on(lo, hi, flo, fhi);
+  // On its boundary at lo and heading out (an undamped contact released
+  // exactly at the end of its half period): the halving below would take
+  // some 50 evaluations to find that it never moves inside.
+  if (leaving(lo)) return lo;
   // On the boundary at the start of the mode: find where it moved inside.
   for (double width = 0.5 * (hi - lo); width > 0 && lo + width > lo; width *= 0.5) {
     const double value = f(lo + width);
@@ -79,7 +85,17 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
           };
           return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
         };
-        const double t = crossing_time(f, a, hi, flo, fhi, refine_on);
+        // Heading out by more than rounding: the rate's terms cancel to no
+        // better than 1e-12 of their size (a slope that is 0 to rounding, as
+        // a shaft breaking away exactly at its friction level, is not one).
+        auto leaving = [&](double t) {
+          if (!newton) return false;
+          segment.rate_at(t, rate);
+          const double size = std::abs(form.omega_p * rate.omega_p) + std::abs(form.omega_s * rate.omega_s) +
+                              std::abs(form.dphi * rate.dphi) + std::abs(form.time);
+          return form.rate(rate) < -1e-12 * size;
+        };
+        const double t = crossing_time(f, a, hi, flo, fhi, refine_on, leaving);
         if (t < first.time || !first.kind) first = {t, guards[i].kind};
       }
       before[i] = value;
