@@ -45,17 +45,22 @@ ModeDynamics GearModel::dynamics(const Mode& m, double t) const {
   // (5.5): M0 − k_z·|M0|·sign φ̇s = M0·(1 − k_z·sign M0·sign φ̇s).
   d.gain_s = 1.0 - p_.tooth_friction * m.torque_sign * direction(m.secondary);
   d.coupled = in_contact(m.contact) && m.phase != Phase::parted;
+  contact_law(m, d);
+  return d;
+}
+
+void GearModel::contact_law(const Mode& m, ModeDynamics& d) const {
   d.offset = m.contact == Contact::positive ? p_.half_backlash
            : m.contact == Contact::negative ? -p_.half_backlash : 0.0;
   // The capped law within a phase is linear too: 2c without damping, or nothing.
   d.stiffness = m.phase == Phase::capped ? 2 * p_.stiffness : p_.stiffness;
   d.damping = m.phase == Phase::capped ? 0.0 : p_.damping;
-  return d;
 }
 
 LinearForm GearModel::torque_form(const Mode& m) const {
   if (!in_contact(m.contact) || m.phase == Phase::parted) return {};
-  const ModeDynamics d = dynamics(m);
+  ModeDynamics d;  // the contact law alone: no drive profile lookup
+  contact_law(m, d);
   return {d.damping, -d.damping, d.stiffness, -d.stiffness * d.offset};
 }
 

@@ -144,6 +144,8 @@ class GearModel {
   std::vector<std::string> active_terms() const;
 
  private:
+  /// The contact's offset, stiffness and damping in mode m (part of dynamics()).
+  void contact_law(const Mode& m, ModeDynamics& d) const;
   Shaft resolve_primary(const Mode& mode, const GearState& s, double t) const;
   Shaft resolve_secondary(const Mode& mode, const GearState& s) const;
   int torque_sign_at(const Mode& mode, const GearState& s) const;

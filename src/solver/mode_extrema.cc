@@ -139,11 +139,17 @@ const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
     return g.omega_p == f.omega_p && g.omega_s == f.omega_s && g.dphi == f.dphi;
   };
   for (int i = 0; i < power_count_; ++i)
-    if (same(powers_[i].f)) return powers_[i];
+    if (powers_[i].source == &f && same(powers_[i].f)) return powers_[i];
+  for (int i = 0; i < power_count_; ++i)
+    if (same(powers_[i].f)) {
+      powers_[i].source = &f;
+      return powers_[i];
+    }
   const auto times_matrix = [&](const LinearForm& r) {
     return LinearForm{dot(r, columns_[0]), dot(r, columns_[1]), dot(r, columns_[2]), 0};
   };
   Powers& slot = powers_[power_count_ < max_powers ? power_count_++ : max_powers - 1];
+  slot.source = &f;
   slot.f = f;
   slot.r2 = times_matrix(f);
   slot.r3 = times_matrix(slot.r2);

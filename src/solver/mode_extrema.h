@@ -47,6 +47,7 @@ class ModeExtrema {
   /// A form's linear part times the mode's matrix, once and twice: the same
   /// for every interval of the segment, so worked out once per form.
   struct Powers {
+    const LinearForm* source = nullptr;  ///< the form asked for last (the recorder asks for the same few)
     LinearForm f, r2, r3;
     /// f along an oscillating segment, if it is one: made when a search
     /// first needs it (most intervals are left out by the bound alone).
