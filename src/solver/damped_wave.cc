@@ -20,6 +20,14 @@ double DampedWaveForm::value(double tau) const {
   return line0_ + line1_ * tau + std::exp(decay_ * tau) * (wave_.x * cosine + wave_.y * sine);
 }
 
+std::pair<double, double> DampedWaveForm::value_and_slope(double tau) const {
+  double sine, cosine;
+  ::sincos(frequency_ * tau, &sine, &cosine);
+  const double e = std::exp(decay_ * tau);
+  return {line0_ + line1_ * tau + e * (wave_.x * cosine + wave_.y * sine),
+          line1_ + e * (slope1_.x * cosine + slope1_.y * sine)};
+}
+
 std::pair<double, double> DampedWaveForm::slope(double tau) const {
   double sine, cosine;
   ::sincos(frequency_ * tau, &sine, &cosine);

@@ -17,6 +17,8 @@ class DampedWaveForm {
   double origin() const { return origin_; }
   double line_slope() const { return line1_; }
   double value(double tau) const;
+  /// g(τ) and g'(τ).
+  std::pair<double, double> value_and_slope(double tau) const;
   /// g'(τ) and g''(τ).
   std::pair<double, double> slope(double tau) const;
 

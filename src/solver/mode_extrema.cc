@@ -138,23 +138,22 @@ const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
   auto same = [&](const LinearForm& g) {
     return g.omega_p == f.omega_p && g.omega_s == f.omega_s && g.dphi == f.dphi;
   };
-  for (int i = 0; i < power_count_; ++i)
-    if (powers_[i].source == &f && same(powers_[i].f)) return powers_[i];
-  for (int i = 0; i < power_count_; ++i)
-    if (same(powers_[i].f)) {
-      powers_[i].source = &f;
-      return powers_[i];
+  for (Powers& p : powers_)
+    if (p.source == &f && same(p.f)) return p;
+  for (Powers& p : powers_)
+    if (same(p.f)) {
+      p.source = &f;
+      return p;
     }
   const auto times_matrix = [&](const LinearForm& r) {
     return LinearForm{dot(r, columns_[0]), dot(r, columns_[1]), dot(r, columns_[2]), 0};
   };
-  Powers& slot = powers_[power_count_ < max_powers ? power_count_++ : max_powers - 1];
+  if (powers_.size() == max_powers) powers_.pop_back();
+  Powers& slot = powers_.emplace_back();
   slot.source = &f;
   slot.f = f;
   slot.r2 = times_matrix(f);
   slot.r3 = times_matrix(slot.r2);
-  slot.wave.reset();
-  slot.wave_asked = false;
   return slot;
 }
 
