@@ -151,15 +151,8 @@ class ExactSegment : public Segment {
 
   /// f = l0 + l1·τ + p·w + q·w' (shape), w = e^{aτ}·(A·cos bτ + B·sin bτ).
   std::optional<DampedWaveForm> damped_wave(const LinearForm& f) const override {
-    if (!d_.coupled || !oscillator_.underdamped() || force_rate_ != 0) return std::nullopt;
-    const Shape g = shape(f);
-    const double a = oscillator_.decay(), b = oscillator_.frequency();
-    const double A = oscillator_.free_start(), B = (oscillator_.free_rate_start() - a * A) / b;
-    const double c = g.p * A + g.q * (a * A + b * B), s = g.p * B + g.q * (a * B - b * A);
-    // A line slope of rounding size is 0: the twist and the tooth torque
-    // have none in contact (the shafts' common acceleration cancels).
-    const double line1 = std::abs(g.l1) <= 8 * std::numeric_limits<double>::epsilon() * g.l1_size ? 0.0 : g.l1;
-    return DampedWaveForm(t0_, g.l0, line1, a, b, c, s);
+    if (!oscillates()) return std::nullopt;
+    return wave_form(shape(f));
   }
 
  private:
@@ -209,6 +202,20 @@ class ExactSegment : public Segment {
   };
 
   double kappa() const { return oscillator_.kappa(); }
+  /// Underdamped with constant forcing: each guard is a DampedWaveForm.
+  bool oscillates() const { return d_.coupled && oscillator_.underdamped() && force_rate_ == 0; }
+
+  /// A guard's shape as a line and a damped cosine (when oscillates()):
+  /// w = e^{aτ}·(A·cos bτ + B·sin bτ), h = p·w + q·w'.
+  DampedWaveForm wave_form(const Shape& g) const {
+    const double a = oscillator_.decay(), b = oscillator_.frequency();
+    const double A = oscillator_.free_start(), B = (oscillator_.free_rate_start() - a * A) / b;
+    const double c = g.p * A + g.q * (a * A + b * B), s = g.p * B + g.q * (a * B - b * A);
+    // A line slope of rounding size is 0: the twist and the tooth torque
+    // have none in contact (the shafts' common acceleration cancels).
+    const double line1 = std::abs(g.l1) <= 8 * std::numeric_limits<double>::epsilon() * g.l1_size ? 0.0 : g.l1;
+    return DampedWaveForm(t0_, g.l0, line1, a, b, c, s);
+  }
 
   /// In free flight each guard is a parabola in τ (the twist is one, the speeds
   /// are affine); its vertex, where g' = l1 + p·u' + q·f = 0, splits it into
@@ -327,8 +334,12 @@ class ExactSegment : public Segment {
   /// g' is monotone and a minimum is where it turns from < 0 to >= 0.
   std::optional<double> first_minimum(const Shape& g, double ta, double tb, const Wave& wa,
                                       const Wave& wb) const {
-    // Newton's method on g' and g'', whose derivatives the wave gives at once.
+    // Newton's method on g' and g'', whose derivatives the wave gives at
+    // once; on the guard's damped cosine alone where the mode oscillates
+    // (there the zero of g'' also comes from its phase).
+    const std::optional<DampedWaveForm> form = oscillates() ? std::optional(wave_form(g)) : std::nullopt;
     auto slope_at = [&](double tau) {
+      if (form) return form->slope(tau);
       const Wave x = wave(tau);
       return std::pair(g.slope(x, tau), g.curvature(x));
     };
@@ -346,8 +357,16 @@ class ExactSegment : public Segment {
     // there): cut into pieces on which g' is monotone.
     auto split = [&](double lo, double hi, double ca, double cb, double sa, double sb) {
       if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
-        const double m = bracketed_newton(curvature_at, lo, hi, ca, cb);
-        const double sm = slope_at(m).first;
+        double m = NAN, sm = NAN;
+        if (form) {
+          const DampedWaveForm::Point bend = form->next_inflection(lo);
+          m = bend.tau;
+          sm = bend.value;
+        }
+        if (!(m > lo && m < hi)) {
+          m = bracketed_newton(curvature_at, lo, hi, ca, cb);
+          sm = slope_at(m).first;
+        }
         pieces[count++] = {lo, m, sa, sm};
         pieces[count++] = {m, hi, sm, sb};
       } else {
