@@ -338,6 +338,25 @@ class ExactSegment : public Segment {
     // once; on the guard's damped cosine alone where the mode oscillates
     // (there the zero of g'' also comes from its phase).
     const std::optional<DampedWaveForm> form = oscillates() ? std::optional(wave_form(g)) : std::nullopt;
+    // A slope within rounding of zero counts as zero. Rounding here is mostly
+    // that of the twist: Δφ carries the contact twist u = Δφ − offset only to
+    // ulp(ε), which makes κ·u and so g' uncertain by about q·κ·ulp(ε).
+    const double rest = oscillator_.equilibrium();
+    const double noise =
+        8 * std::numeric_limits<double>::epsilon() *
+        (std::abs(g.l1) + std::abs(2 * g.l2 * tb) +
+         std::abs(g.p) * (std::abs(wa.w1) + std::abs(s0_.omega_p) + std::abs(s0_.omega_s)) +
+         std::abs(g.q) * (oscillator_.delta() * std::abs(wa.w1) +
+                          kappa() * (std::abs(wa.w) + std::abs(d_.offset) + std::abs(rest))));
+    if (form && form->line_slope() == 0) {
+      // No line (the twist, the torque): g turns where h does, at most once
+      // on an interval under half a period, and falling at ta that turn is
+      // a minimum; its time comes from the phase.
+      if (!(g.slope(wa, ta) < -noise)) return std::nullopt;
+      const double turn = form->next_turn(ta).tau;
+      if (turn <= tb) return turn;
+      return std::nullopt;
+    }
     auto slope_at = [&](double tau) {
       if (form) return form->slope(tau);
       const Wave x = wave(tau);
@@ -387,16 +406,6 @@ class ExactSegment : public Segment {
     } else {
       split(ta, tb, ca, cb, sa, sb);
     }
-    // A slope within rounding of zero counts as zero. Rounding here is mostly
-    // that of the twist: Δφ carries the contact twist u = Δφ − offset only to
-    // ulp(ε), which makes κ·u and so g' uncertain by about q·κ·ulp(ε).
-    const double rest = oscillator_.equilibrium();
-    const double noise =
-        8 * std::numeric_limits<double>::epsilon() *
-        (std::abs(g.l1) + std::abs(2 * g.l2 * tb) +
-         std::abs(g.p) * (std::abs(wa.w1) + std::abs(s0_.omega_p) + std::abs(s0_.omega_s)) +
-         std::abs(g.q) * (oscillator_.delta() * std::abs(wa.w1) +
-                          kappa() * (std::abs(wa.w) + std::abs(d_.offset) + std::abs(rest))));
     for (int i = 0; i < count; ++i) {
       const Piece& piece = pieces[i];
       if (!(piece.slope_lo < -noise && piece.slope_hi >= 0)) continue;
