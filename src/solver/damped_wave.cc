@@ -35,19 +35,20 @@ std::pair<double, double> DampedWaveForm::slope(double tau) const {
   return {line1_ + e * (slope1_.x * cosine + slope1_.y * sine), e * (slope2_.x * cosine + slope2_.y * sine)};
 }
 
-DampedWaveForm::Point DampedWaveForm::next_turn(double tau) const {
-  Point p = next_zero(slope1_, tau, wave_);
+DampedWaveForm::Point DampedWaveForm::next_turn(double tau, double until) const {
+  Point p = next_zero(slope1_, tau, wave_, until);
   p.value += line0_ + line1_ * p.tau;
   return p;
 }
 
-DampedWaveForm::Point DampedWaveForm::next_inflection(double tau) const {
-  Point p = next_zero(slope2_, tau, slope1_);
+DampedWaveForm::Point DampedWaveForm::next_inflection(double tau, double until) const {
+  Point p = next_zero(slope2_, tau, slope1_, until);
   p.value += line1_;
   return p;
 }
 
-DampedWaveForm::Point DampedWaveForm::next_zero(const Wave& zero, double tau, const Wave& other) const {
+DampedWaveForm::Point DampedWaveForm::next_zero(const Wave& zero, double tau, const Wave& other,
+                                                double until) const {
   if (zero.radius < 0) {
     zero.radius = std::hypot(zero.x, zero.y);
     zero.phase = std::atan2(zero.y, zero.x) + 0.5 * std::numbers::pi;
@@ -60,6 +61,7 @@ DampedWaveForm::Point DampedWaveForm::next_zero(const Wave& zero, double tau, co
     k += 1;
     at = (zero.phase + k * std::numbers::pi) / frequency_;
   }
+  if (!(at <= until)) return {at, NAN};
   const double parity = std::fmod(k, 2.0) == 0 ? 1.0 : -1.0;
   return {at, parity * std::exp(decay_ * at) * (other.y * zero.x - other.x * zero.y) / zero.radius};
 }

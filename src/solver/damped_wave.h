@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <utility>
 
 namespace gearpatch {
@@ -26,10 +27,12 @@ class DampedWaveForm {
   struct Point {
     double tau, value;
   };
-  /// The first zero of h' after τ (INFINITY if h is 0), with g there.
-  Point next_turn(double tau) const;
-  /// The first zero of g'' after τ (INFINITY if h is 0), with g' there.
-  Point next_inflection(double tau) const;
+  /// The first zero of h' after τ (INFINITY if h is 0), with g there if it
+  /// lies at or before `until` (else NaN: no exponential spent on it).
+  Point next_turn(double tau, double until = INFINITY) const;
+  /// The first zero of g'' after τ (INFINITY if h is 0), with g' there if
+  /// it lies at or before `until` (else NaN).
+  Point next_inflection(double tau, double until = INFINITY) const;
 
  private:
   /// An oscillation e^{aτ}·(x·cos ωτ + y·sin ωτ) and where it is zero:
@@ -41,7 +44,7 @@ class DampedWaveForm {
   };
   /// The first zero of `zero` after τ, with the oscillation `other` there:
   /// one exponential, since cos and sin at the zero follow from its phase.
-  Point next_zero(const Wave& zero, double tau, const Wave& other) const;
+  Point next_zero(const Wave& zero, double tau, const Wave& other, double until) const;
 
   double origin_, line0_, line1_, decay_, frequency_;
   Wave wave_, slope1_, slope2_;  ///< h, h', h''

@@ -353,7 +353,7 @@ class ExactSegment : public Segment {
       // on an interval under half a period, and falling at ta that turn is
       // a minimum; its time comes from the phase.
       if (!(g.slope(wa, ta) < -noise)) return std::nullopt;
-      const double turn = form->next_turn(ta).tau;
+      const double turn = form->next_turn(ta, ta).tau;  // the time alone
       if (turn <= tb) return turn;
       return std::nullopt;
     }
@@ -378,7 +378,7 @@ class ExactSegment : public Segment {
       if ((ca < 0 && cb > 0) || (ca > 0 && cb < 0)) {
         double m = NAN, sm = NAN;
         if (form) {
-          const DampedWaveForm::Point bend = form->next_inflection(lo);
+          const DampedWaveForm::Point bend = form->next_inflection(lo, hi);
           m = bend.tau;
           sm = bend.value;
         }

@@ -310,7 +310,7 @@ struct ModeExtrema::Search {
       const double tau = bracketed_newton(slope, lo, hi, slo, shi);
       consider(w.origin() + tau, w.value(tau));
     };
-    const DampedWaveForm::Point bend = w.next_inflection(ta);
+    const DampedWaveForm::Point bend = w.next_inflection(ta, tb);
     if (bend.tau < tb) {
       piece(ta, bend.tau, sa, sign * bend.value);
       piece(bend.tau, tb, sign * bend.value, sb);
@@ -355,10 +355,10 @@ void ModeExtrema::raise_flat(const DampedWaveForm& w, const LinearForm& f, Extre
   consider(end_.t, f(end_.state));
   // |h| never grows (a <= 0): past the first turn of each sign none is higher.
   const double ta = start_.t - w.origin(), tb = end_.t - w.origin();
-  const DampedWaveForm::Point first = w.next_turn(ta);
+  const DampedWaveForm::Point first = w.next_turn(ta, tb);
   if (!(first.tau < tb)) return;
   consider(w.origin() + first.tau, first.value);
-  const DampedWaveForm::Point second = w.next_turn(first.tau);
+  const DampedWaveForm::Point second = w.next_turn(first.tau, tb);
   if (second.tau < tb) consider(w.origin() + second.tau, second.value);
 }
 
