@@ -199,19 +199,29 @@ struct ModeExtrema::Search {
     return bound_from(m, values(p), end - p.t, bend);
   }
 
-  /// upper_bound from σ·f and its derivatives at a point, `span` ahead.
-  /// Under a ramp the polynomial part bends by `bend` (its g''), which adds
-  /// at most bend·span²/2 above its chord's higher end.
-  static double bound_from(const ModeExtrema& m, const Values& v, double span, double bend) {
+  /// σ·f beyond a point split into its line and the radius of its free
+  /// part: the same for both signs but for the signs of line and slope.
+  struct Reach {
+    double line, slope, radius;
+    /// upper_bound for σ = `sign`, `span` ahead. Under a ramp the polynomial
+    /// part bends by `bend` (σ = +1's g''), which adds at most
+    /// bend·span²/2 above its chord's higher end.
+    double bound(double sign, double span, double bend) const {
+      const double l = sign * line, s = sign * slope;
+      const double b = std::max(l, l + s * span) + radius + std::max(0.0, 0.5 * sign * bend * span * span);
+      // Within rounding of the peak found: nothing to gain there.
+      return b - 1e-12 * (std::abs(line) + radius);
+    }
+  };
+  static Reach reach(const ModeExtrema& m, const Values& v, double bend) {
     const double h2 = v.g2 - bend;
     const double h1 = -(v.g3 + m.delta_ * h2) / m.kappa_;
     const double h = -(h2 + m.delta_ * h1) / m.kappa_;
-    const double line = v.g - h, slope = v.g1 - h1;
-    const double radius = std::sqrt(h * h + h1 * h1 / m.kappa_);
-    const double bound = std::max(line, line + slope * span) + radius +
-                         std::max(0.0, 0.5 * bend * span * span);
-    // Within rounding of the peak found: nothing to gain there.
-    return bound - 1e-12 * (std::abs(line) + radius);
+    return {v.g - h, v.g1 - h1, std::sqrt(h * h + h1 * h1 / m.kappa_)};
+  }
+  /// upper_bound from σ·f and its derivatives at a point, `span` ahead.
+  static double bound_from(const ModeExtrema& m, const Values& v, double span, double bend) {
+    return reach(m, v, bend).bound(1, span, bend);
   }
 
   /// With speed feedback: sup σ·f on [a, b] from its ends and the sag bound.
@@ -382,11 +392,9 @@ void ModeExtrema::raise(const LinearForm& f, Extremum& peak) const {
       v.g2 += dot(f, forcing_rate_);
       v.g3 += dot(p.r2, forcing_rate_);
     }
-    const Values negated{-v.g, -v.g1, -v.g2, -v.g3};
     const double span = end_.t - start_.t, reached = std::abs(peak.value), c2 = bend(f);
-    if (Search::bound_from(*this, v, span, c2) <= reached &&
-        Search::bound_from(*this, negated, span, -c2) <= reached)
-      return;
+    const Search::Reach r = Search::reach(*this, v, c2);
+    if (r.bound(1, span, c2) <= reached && r.bound(-1, span, c2) <= reached) return;
   }
   const DampedWaveForm* w = wave(p);
   if (w && w->line_slope() == 0) return raise_flat(*w, f, peak);
