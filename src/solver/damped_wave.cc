@@ -14,25 +14,25 @@ DampedWaveForm::DampedWaveForm(double origin, double line0, double line1, double
   slope2_ = {decay * slope1_.x + frequency * slope1_.y, decay * slope1_.y - frequency * slope1_.x};
 }
 
+DampedWaveForm::Angle DampedWaveForm::at(double tau) const {
+  Angle x;
+  ::sincos(frequency_ * tau, &x.sine, &x.cosine);
+  x.decay = std::exp(decay_ * tau);
+  return x;
+}
+
 double DampedWaveForm::value(double tau) const {
-  double sine, cosine;
-  ::sincos(frequency_ * tau, &sine, &cosine);
-  return line0_ + line1_ * tau + std::exp(decay_ * tau) * (wave_.x * cosine + wave_.y * sine);
+  return line0_ + line1_ * tau + at(tau).of(wave_);
 }
 
 std::pair<double, double> DampedWaveForm::value_and_slope(double tau) const {
-  double sine, cosine;
-  ::sincos(frequency_ * tau, &sine, &cosine);
-  const double e = std::exp(decay_ * tau);
-  return {line0_ + line1_ * tau + e * (wave_.x * cosine + wave_.y * sine),
-          line1_ + e * (slope1_.x * cosine + slope1_.y * sine)};
+  const Angle x = at(tau);
+  return {line0_ + line1_ * tau + x.of(wave_), line1_ + x.of(slope1_)};
 }
 
 std::pair<double, double> DampedWaveForm::slope(double tau) const {
-  double sine, cosine;
-  ::sincos(frequency_ * tau, &sine, &cosine);
-  const double e = std::exp(decay_ * tau);
-  return {line1_ + e * (slope1_.x * cosine + slope1_.y * sine), e * (slope2_.x * cosine + slope2_.y * sine)};
+  const Angle x = at(tau);
+  return {line1_ + x.of(slope1_), x.of(slope2_)};
 }
 
 DampedWaveForm::Point DampedWaveForm::next_turn(double tau, double until) const {

@@ -42,6 +42,12 @@ class DampedWaveForm {
     double x = 0, y = 0;
     mutable double radius = -1, phase = 0;
   };
+  /// e^{aτ}, cos ωτ and sin ωτ at one τ, for any of the oscillations.
+  struct Angle {
+    double decay, cosine, sine;
+    double of(const Wave& w) const { return decay * (w.x * cosine + w.y * sine); }
+  };
+  Angle at(double tau) const;
   /// The first zero of `zero` after τ, with the oscillation `other` there:
   /// one exponential, since cos and sin at the zero follow from its phase.
   Point next_zero(const Wave& zero, double tau, const Wave& other, double until) const;

@@ -139,18 +139,12 @@ const ModeExtrema::Powers& ModeExtrema::powers(const LinearForm& f) const {
     return g.omega_p == f.omega_p && g.omega_s == f.omega_s && g.dphi == f.dphi;
   };
   for (Powers& p : powers_)
-    if (p.source == &f && same(p.f)) return p;
-  for (Powers& p : powers_)
-    if (same(p.f)) {
-      p.source = &f;
-      return p;
-    }
+    if (same(p.f)) return p;
   const auto times_matrix = [&](const LinearForm& r) {
     return LinearForm{dot(r, columns_[0]), dot(r, columns_[1]), dot(r, columns_[2]), 0};
   };
   if (powers_.size() == max_powers) powers_.pop_back();
   Powers& slot = powers_.emplace_back();
-  slot.source = &f;
   slot.f = f;
   slot.r2 = times_matrix(f);
   slot.r3 = times_matrix(slot.r2);

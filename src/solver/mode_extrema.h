@@ -49,7 +49,6 @@ class ModeExtrema {
   /// A form's linear part times the mode's matrix, once and twice: the same
   /// for every interval of the segment, so worked out once per form.
   struct Powers {
-    const LinearForm* source = nullptr;  ///< the form asked for last (the recorder asks for the same few)
     LinearForm f, r2, r3;
     /// f along an oscillating segment, if it is one: made when a search
     /// first needs it (most intervals are left out by the bound alone).
@@ -78,8 +77,8 @@ class ModeExtrema {
   mutable bool have_rest_ = false;
   mutable GearState rest_{};
   static constexpr std::size_t max_powers = 6;
-  /// Made as forms are asked for: an array of them, zeroed per segment,
-  /// cost 4 % of bild6a's instructions.
+  /// Made as forms are asked for (an array of them, zeroed per segment,
+  /// cost bild6a 1 % of its instructions).
   mutable boost::container::static_vector<Powers, max_powers> powers_;
   double kappa_ = 0, delta_ = 0, quarter_ = 0;
   /// Under a ramp (taken at the first point asked for): the forcing's rate b1
