@@ -132,16 +132,6 @@ bool LinearProgram::row_binds(int i, double tolerance) const {
   return low || high;
 }
 
-bool LinearProgram::column_at_bound(int j, double tolerance) const {
-  const int type = glp_get_col_type(p_.get(), j);
-  const double x = value(j);
-  const bool low = (type == GLP_LO || type == GLP_DB || type == GLP_FX) &&
-                   std::abs(x - glp_get_col_lb(p_.get(), j)) <= tolerance;
-  const bool high = (type == GLP_UP || type == GLP_DB || type == GLP_FX) &&
-                    std::abs(x - glp_get_col_ub(p_.get(), j)) <= tolerance;
-  return low || high;
-}
-
 std::string LinearProgram::row_name(int i) const {
   const char* name = glp_get_row_name(p_.get(), i);
   return name ? name : "";

@@ -39,7 +39,6 @@ class LinearProgram {
   double row_activity(int row) const;
   /// The row sits at one of its bounds (within `tolerance`): it binds the solution.
   bool row_binds(int row, double tolerance = 1e-7) const;
-  bool column_at_bound(int column, double tolerance = 1e-7) const;
   std::string row_name(int row) const;
   int rows() const;
   int columns() const;

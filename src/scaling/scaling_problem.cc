@@ -174,11 +174,6 @@ class Model {
     }
     return t;
   }
-  double log_settings_constant() const {
-    double c = 0;
-    for (const auto& r : pr_.coefficients) c += r.value.constant;
-    return c;
-  }
   Terms slack_terms() const {
     Terms t;
     for (const auto& [group, column] : slacks_) t.emplace_back(column, 1.0);
