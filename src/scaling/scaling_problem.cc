@@ -131,7 +131,7 @@ struct RowMeaning {
   std::map<Maximum, double> scales;
   double beta = 0;
   int option = 0;  ///< the choice column the row holds under (0: always)
-  std::optional<Setting> setting;  ///< the coefficient it limits, if any
+  std::optional<Setting> setting = std::nullopt;  ///< the coefficient it limits, if any
 };
 
 struct Option {
