@@ -28,7 +28,9 @@ commands=$("$gearpatch" --help | sed -n '/^commands:/,/^$/s/^  \([a-z][a-z-]*\) 
   echo "[SEE ALSO]"
   echo "README.md and docs/ in the source tree: the user guide."
 } > "$include"
-help2man --no-info --no-discard-stderr --section=1 \
+help2man --no-info --no-discard-stderr --section=1 --locale=C.UTF-8 \
   --name="gear drive physics to analog computer programs, checked with ngspice" \
   --include="$include" --output="$output.tmp" "$gearpatch"
-mv "$output.tmp" "$output"
+# The help texts hold Greek letters and middle dots: tell man's preconv.
+{ echo "'\\\" -*- coding: UTF-8 -*-"; cat "$output.tmp"; } > "$output"
+rm -f "$output.tmp"
