@@ -18,10 +18,10 @@ def figures(path):
     with open(path, encoding="utf-8") as f:
         for figure in json.load(f):
             numbers = figure["figures"]
-            k = numbers["restitution"] or [float("nan")]
+            k = [abs(r) if abs(r) < 5e-4 else r for r in numbers["restitution"]] or [float("nan")]
             speeds = figure["final_speeds"]
             check = figure["verify"]
-            print(f"Bild {figure['bild']}: {numbers['impacts']} impacts, restitution {min(k):.3f}…{max(k):.3f}, "
+            print(f"Bild {figure['bild']}: {numbers['impacts']} impact(s), restitution {min(k):.3f}…{max(k):.3f}, "
                   f"final speeds {speeds[0]:.4f} and {speeds[1]:.4f} rad/s, "
                   f"momentum lost {100 * numbers['momentum_lost_fraction']:.1f} %, "
                   f"energy lost {numbers['energy_lost']:.3f} J, "
