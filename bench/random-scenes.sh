@@ -21,7 +21,7 @@ verdict() {  # scene.ini verify-options... -> "name verdict reason"
   local out=${scene%.ini}.out rc=0
   "$gearpatch" verify "$scene" "$@" >"$out" 2>&1 || rc=$?
   local names=(pass fail refused abort internal)
-  local reason=$(grep -m1 -E '^  - |gearpatch verify: [^r]' "$out" | cut -c1-160)
+  local reason=$(grep -E '^  - |gearpatch verify: [^r]' "$out" | grep -m1 -v -E ' done, [0-9]+ failed' | cut -c1-160)
   grep -q '^ngspice retry' "$out" && reason="(ngspice retried) $reason"
   printf '%-36s %-8s %s\n' "$(basename "${scene%.ini}")" "${names[$rc]:-rc$rc}" "$reason"
 }

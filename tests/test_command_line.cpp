@@ -5,6 +5,7 @@
 
 #include <stdlib.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -22,7 +23,10 @@ const std::string kBinary = GEARPATCH_BINARY;
 
 /// A fresh folder that sees the example scenes as scenes/, removed afterwards.
 struct WorkDir : testing::TempFolder {
-  WorkDir() : TempFolder("cli") { fs::create_directory_symlink(testing::source_path("scenes"), path / "scenes"); }
+  WorkDir() : TempFolder("cli") {
+    fs::create_directory_symlink(testing::source_path("scenes"), path / "scenes");
+    fs::create_directory_symlink(testing::source_path("machines"), path / "machines");
+  }
   /// Runs `arguments` with the binary from this folder.
   int run(const std::string& arguments, std::string& output) const {
     return testing::run_command("cd " + path.string() + " && " + kBinary + " " + arguments, output);
@@ -38,6 +42,29 @@ std::vector<std::string> examples_of(const std::string& help) {
   for (std::string line; std::getline(lines, line);)
     if (line.rfind("  gearpatch ", 0) == 0) examples.push_back(line.substr(2));
   return examples;
+}
+
+/// The commands `gearpatch --help` lists.
+std::vector<std::string> commands_of(const std::string& help) {
+  std::vector<std::string> names;
+  std::istringstream lines(help.substr(help.find("\ncommands:\n") + 11));
+  for (std::string line; std::getline(lines, line) && line.rfind("  ", 0) == 0;)
+    names.push_back(line.substr(2, line.find(' ', 2) - 2));
+  return names;
+}
+
+/// The files and folders an example names as its outputs (the values of the output options).
+std::vector<std::string> outputs_of(const std::string& example) {
+  static const std::vector<std::string> output_options = {
+      "-o", "--out", "--json", "--plot", "--csv", "--figures-plot", "--markdown", "--events",
+      "--picture", "--dot", "--keep-deck", "--summary", "--job-list", "--run-dir"};
+  std::vector<std::string> outputs;
+  std::istringstream words(example);
+  for (std::string word, value; words >> word;)
+    if (std::find(output_options.begin(), output_options.end(), word) != output_options.end() && words >> value &&
+        value != "-")
+      outputs.push_back(value);
+  return outputs;
 }
 
 }  // namespace
@@ -93,25 +120,34 @@ TEST_CASE("gearpatch --version prints the project's version", "[common][cli]") {
   CHECK(output == std::string("gearpatch ") + GEARPATCH_VERSION + "\n");
 }
 
-TEST_CASE("every --help ends with examples that run as written", "[common][cli][ngspice]") {
+TEST_CASE("every --help ends with examples that run as written and make the files they name",
+          "[common][cli][ngspice]") {
   WorkDir dir;
   std::string help;
   REQUIRE(dir.run("--help", help) == 0);
   std::vector<std::string> commands = {""};
-  for (const char* name : {"simulate", "settings", "netlist", "verify", "bench", "reduce"}) {
-    CHECK_THAT(help, Catch::Contains(std::string("  ") + name + " "));
-    commands.push_back(name);
-  }
+  for (const std::string& name : commands_of(help)) commands.push_back(name);
+  for (const char* name : {"simulate", "settings", "netlist", "verify", "patch", "sweep", "merge", "random-scenes"})
+    CHECK(std::find(commands.begin(), commands.end(), name) != commands.end());
   for (const std::string& command : commands) {
     INFO("gearpatch " << command << " --help");
     REQUIRE(dir.run(command + " --help", help) == 0);
     const auto examples = examples_of(help);
     CHECK(!examples.empty());
     CHECK(help.substr(help.rfind("\nexamples:\n")).find("\n\n", 1) == std::string::npos);  // it ends the help
+    const bool merged = std::any_of(examples.begin(), examples.end(),
+                                    [](const std::string& e) { return e.rfind("gearpatch merge ", 0) == 0; });
     for (const std::string& example : examples) {
       INFO(example);
       std::string output;
+      const auto job_list = example.find("--job-list ");
+      if (job_list != std::string::npos) fs::remove_all(dir.path / outputs_of(example.substr(job_list)).front());
       CHECK(dir.run(example.substr(std::string("gearpatch ").size()) + " 2>&1", output) == 0);
+      for (const std::string& file : outputs_of(example)) CHECK(fs::exists(dir.path / file));
+      if (merged && job_list != std::string::npos)  // the help's GNU Parallel line, on this machine
+        CHECK(testing::run_command("cd " + dir.path.string() + " && parallel --will-cite -S : < " +
+                                       outputs_of(example.substr(job_list)).front() + "/jobs.txt",
+                                   output) == 0);
     }
   }
 }

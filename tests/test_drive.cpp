@@ -1,4 +1,4 @@
-// What a drive engineer brings (issue 14): values on the load shaft referred
+// What a drive engineer brings: values on the load shaft referred
 // by the gear ratio, units, drive profiles, the motor line, viscous friction
 // and a reactive load, each against a hand calculation or an invariant.
 #include <array>

@@ -48,7 +48,7 @@ int total(const Allocation& a) {
 
 const std::vector<std::string> machines = {"the-analog-thing", "model-1", "classic", "generic"};
 
-/// The example scenes and issue 14's drive scenes (PWL drive, speed feedback, capped law, Stribeck limiters).
+/// The example scenes and the drive scenes (PWL drive, speed feedback, capped law, Stribeck limiters).
 std::vector<std::string> example_and_drive_scenes() {
   std::vector<std::string> scenes = testing::example_scenes();
   for (const char* drive : {"conveyor", "startup", "reversal", "capped", "stribeck"})

@@ -32,7 +32,7 @@ int run_patch(const std::vector<std::string>& args) {
                        {"gearpatch patch scenes/bild5b.ini --machine the-analog-thing",
                         "gearpatch patch scenes/bild6c.ini --machine model-1 --json bild6c.patch.json",
                         "gearpatch patch scenes/bild5b.ini --machine the-analog-thing --picture bild5b.svg",
-                        "gearpatch patch scenes/bild5a.ini --machine my-machine.ini -o bild5a.sheet.txt"},
+                        "gearpatch patch scenes/bild5a.ini --machine machines/classic.ini -o bild5a.sheet.txt"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "patch");

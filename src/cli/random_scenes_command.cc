@@ -15,7 +15,7 @@ int run_random_scenes(const std::vector<std::string>& args) {
   options.add_options()
       ("seed", po::value<std::uint64_t>()->default_value(1), "the seed: the same seed and index give the same scene")
       ("count", po::value<int>()->default_value(42), "how many scenes (1 … 10000); the features take turns")
-      ("out,o", po::value<std::string>(), "the folder to write NAME.ini into (it must exist)");
+      ("out,o", po::value<std::string>(), "the folder to write NAME.ini into (made if missing)");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch random-scenes [--seed S] [--count N] -o DIR\n\n"
                        "Writes N random, physically plausible scenes, taking turns over the feature\n"
@@ -26,7 +26,7 @@ int run_random_scenes(const std::vector<std::string>& args) {
                        "passes the scene reader. bench/random-scenes.sh verifies a set and prints\n"
                        "the pass rate.",
                        options,
-                       {"gearpatch random-scenes --seed 1 --count 42 -o /tmp/random",
+                       {"gearpatch random-scenes --seed 1 --count 42 -o random",
                         "bench/random-scenes.sh 1 42"},
                        vm, false))
     return 0;
@@ -35,8 +35,9 @@ int run_random_scenes(const std::vector<std::string>& args) {
   const int count = vm["count"].as<int>();
   if (count < 1 || count > 10000) throw Error(fmt::format("--count = {}: must be in [1, 10000]", count));
   const std::filesystem::path folder = vm["out"].as<std::string>();
-  if (!std::filesystem::is_directory(folder))
-    throw Error("-o " + folder.string() + ": not a folder (create it first)");
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) throw Error(fmt::format("-o {}: cannot make the folder: {}", folder.string(), ec.message()));
   const auto scenes = random_scenes(vm["seed"].as<std::uint64_t>(), count);
   OutputSet outputs;
   for (const auto& s : scenes) {

@@ -26,7 +26,7 @@ struct GearParameters {
   double drive_torque = 0;       ///< M_a
   double load_torque = 0;        ///< on the secondary, opposing positive rotation
 
-  // What a drive engineer brings (issue 14); each 0 or empty when unused.
+  // What a drive engineer brings; each 0 or empty when unused.
   DriveProfile drive_profile;    ///< M_a(t) in place of drive_torque when not empty
   double motor_slope = 0;        ///< M_stall/φ̇_noload: the motor line M_a − motor_slope·φ̇p
   double viscous_primary = 0;    ///< b_p, N·m·s/rad

@@ -118,7 +118,7 @@ class Allocator {
                                       std::abs(value), 1, feature_of("alpha2"));
       }
     }
-    // A drive that varies in time (issue 14): a function generator of machine
+    // A drive that varies in time: a function generator of machine
     // time; a machine without one reports the shortfall.
     for (const auto& [node, points] : c_.pwl_sources)
       labels_[node] = take(ElementKind::function_generator, node,

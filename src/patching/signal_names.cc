@@ -38,7 +38,7 @@ std::string feature_of(const std::string& instance) {
   };
   auto it = features.find(instance);
   if (it != features.end()) return it->second;
-  // issue 14's blocks come in families named by prefix
+  // the drive's blocks (speed feedback, Stribeck limiters, profiles) come in families named by prefix
   if (instance.rfind("strib_", 0) == 0) return "Stribeck friction";
   if (instance.rfind("latch_", 0) == 0) return "self-locking";
   if (instance.rfind("cap_", 0) == 0 || instance.rfind("sum_cap_", 0) == 0) return "capped contact law";

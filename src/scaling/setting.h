@@ -12,7 +12,7 @@ namespace gearpatch {
 enum class Setting {
   alpha1, alpha2, alpha3, alpha4, alpha5, alpha6, alpha7, alpha8, alpha9, alpha10,
   alpha11, alpha12, alpha13, alpha14, alpha_tooth, alpha_load, alpha_lock,
-  alpha_speed_p, alpha_viscous_s,  ///< the motor line and viscous friction (issue 14)
+  alpha_speed_p, alpha_viscous_s,  ///< the motor line and viscous friction
   alpha_stribeck_p, alpha_stribeck_s,  ///< each step of the Stribeck function generators
   a, delta1, delta2,
   alpha_stage,  ///< the potentiometer of every attenuating extra stage (solved scaling)

@@ -63,7 +63,7 @@ void primary(Builder& b, const ScalingInput& s, const GearParameters& p, const M
     b.integrator(true, Setting::alpha_stribeck_p, "(k_Sp − k_Cp)/(n·Θp·β·φ̇pm)",
                  (p.bearing_primary - p.sliding_primary) / stribeck_steps / scale,
                  in + "each of the n limiters of the Stribeck function generator on Wp", "");
-  // Issue 14: the motor line and viscous friction feed the speed back; listed only when used.
+  // The motor line and viscous friction feed the speed back; listed only when used.
   if (p.primary_speed_feedback() > 0)
     b.integrator(true, Setting::alpha_speed_p, "(M_stall/φ̇_noload + b_p)/(Θp·β)",
                  p.primary_speed_feedback() / p.inertia_primary,

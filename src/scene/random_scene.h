@@ -5,7 +5,7 @@
 
 namespace gearpatch {
 
-/// The feature classes a random scene set covers in turn (issue 10): each
+/// The feature classes a random scene set covers in turn: each
 /// scene is built around one of them, so a set of n ≥ 7 holds every class.
 enum class SceneFeature {
   frictionless,

@@ -58,7 +58,7 @@ const std::map<std::string, std::string>& scene_keys() {
       {"machine.input_resistance", "ohms of a weight-1 input, 1e3 … 1e9 (default 1e6)"},
       {"machine.potentiometer_resistance", "ohms, 10 … 1e8 (default 1e4)"},
       {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
-      // What a drive engineer brings (issue 14): values in each shaft's own
+      // What a drive engineer brings: values in each shaft's own
       // units, referred to the primary by the tool; drive profiles; motor line.
       {"gear.contact_law", "paper|capped (default paper): capped is Modelica's ElastoBacklash, the damping torque capped at the spring torque and no pull; k is inverted for the law chosen"},
       {"friction.characteristic", "coulomb|stribeck (default coulomb; add viscous_* for Coulomb + viscous): with stribeck, bearing_* are the break-away levels k_S"},
@@ -469,7 +469,7 @@ void read_stribeck(const Reader& r, Scene& s) {
     r.fail("friction.sliding_secondary", "must not exceed the break-away level friction.bearing_secondary");
 }
 
-/// gear.ratio, [load], drive.load, drive.profile and viscous friction (issue 14).
+/// gear.ratio, [load], drive.load, drive.profile and viscous friction.
 void read_drive_engineer(const Reader& r, Scene& s) {
   read_stages(r, s);
   read_load_shaft(r, s);

@@ -217,22 +217,30 @@ std::string figures_plot(const SweepTable& t, const std::string& format) {
   if (log_axis(xs)) script += "set logscale x\n";
   const int columns_across = 3, rows = (static_cast<int>(panels.size()) + columns_across - 1) / columns_across;
   script += fmt::format("set multiplot layout {},{} title {}\n", rows, columns_across, gnuplot_string(plot_title(t)));
+  const auto [x_min, x_max] = std::minmax_element(xs.begin(), xs.end());
   for (std::size_t k = 0; k < panels.size(); ++k) {
     std::string plots;
     std::size_t s = 0;
+    bool any = false;
     for (const auto& [name, members] : series) {
       std::string data = fmt::format("$f{}s{} << EOD\n", k, s);
       for (const runs::JobOutcome* o : members) {
         const double y = panels[k].of(*o);
+        any = any || std::isfinite(y);
         data += std::isfinite(y) ? fmt::format("{} {}\n", x_of(t, *o), y) : std::string("\n");
       }
       script += data + "EOD\n";
       plots += fmt::format("{}$f{}s{} using 1:2 with linespoints pt 7 ps 0.6 {}", plots.empty() ? "" : ", ", k,
                            s++, name.empty() ? std::string("notitle") : "title " + gnuplot_string(name));
     }
-    script += fmt::format("set title {}\nset xlabel {}\nplot {}\n",
+    // A figure no point reached (settling within the run) gets an empty panel that says so:
+    // gnuplot refuses a plot without one valid point, and the whole figure with it.
+    if (!any)
+      plots = fmt::format("[{}:{}] [0:1] 1/0 notitle", *x_min, *x_max > *x_min ? *x_max : *x_min + 1);
+    script += fmt::format("set title {}\nset xlabel {}\n{}plot {}\nunset label 1\n",
                           gnuplot_string(panels[k].name + (panels[k].unit.empty() ? "" : " [" + panels[k].unit + "]")),
-                          gnuplot_string(t.study.axes.front().key), plots);
+                          gnuplot_string(t.study.axes.front().key),
+                          any ? "" : "set label 1 'not reached by any point' at graph 0.5,0.5 center\n", plots);
   }
   return draw_with_gnuplot(format, 1200, 330 * rows + 60, script + "unset multiplot\n");
 }
