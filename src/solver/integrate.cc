@@ -147,8 +147,7 @@ class EventBudget {
 /// cannot be skipped and costs 4 steps per period for the rest of the run.
 class StepBudget {
  public:
-  explicit StepBudget(const RunSpec& spec)
-      : spec_(spec), window_(std::max<std::size_t>(4096, spec.max_steps / 64)) {}
+  explicit StepBudget(const RunSpec& spec) : spec_(spec), window_(first_window) {}
 
   void count(double t, const GearModel& model, const Mode& mode) {
     if (++steps_ - window_steps_ < window_ && steps_ <= spec_.max_steps) return;
@@ -174,9 +173,13 @@ class StepBudget {
     }
     window_steps_ = steps_;
     window_time_ = t;
+    // The windows double up to max_steps/64: a run whose steps are 1e-20 s long
+    // is refused after thousands of steps, not after a minute of them.
+    window_ = std::max(first_window, std::min(steps_, spec_.max_steps / 64));
   }
 
  private:
+  static constexpr std::size_t first_window = 4096;
   const RunSpec& spec_;
   std::size_t window_;
   std::size_t steps_ = 0, window_steps_ = 0;
