@@ -49,7 +49,7 @@ const nlohmann::json& study_schema() {
       "runs": {"type": "integer", "minimum": 1, "maximum": 100000},
       "seed": {"type": "integer", "minimum": 0, "maximum": 999999999999},
       "autoscale": {"type": "boolean"},
-      "timeout": {"type": "number", "minimum": 0.001, "maximum": 86400},
+      "timeout": {"type": "number", "minimum": 0, "maximum": 86400},
       "tolerance": {"type": "number", "minimum": 0, "maximum": 1}
     }
   })");
