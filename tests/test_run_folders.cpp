@@ -321,7 +321,12 @@ TEST_CASE("settings ends on the in-range extremes of the motor, the inertias and
       {"stall", without_drive + "[drive]\nprofile = motor\nstall_torque = 1e30\nno_load_speed = 10\n"},
       {"inertia", base.substr(0, base.find("inertia_secondary = 1.0")) + "inertia_secondary = 1e30" +
                       base.substr(base.find("inertia_secondary = 1.0") + 23)},
-      {"ratio", base.substr(0, base.find("[gear]") + 7) + "ratio = 1e-30\n" + base.substr(base.find("[gear]") + 7)}};
+      {"ratio", base.substr(0, base.find("[gear]") + 7) + "ratio = 1e-30\n" + base.substr(base.find("[gear]") + 7)},
+      // A motor against an inertia of 1e30: the solver's bounds decide no guard, every step bisected 2^30 times.
+      {"motor-inertia", without_drive.substr(0, without_drive.find("inertia_secondary = 1.0")) +
+                            "inertia_secondary = 1e30" +
+                            without_drive.substr(without_drive.find("inertia_secondary = 1.0") + 23) +
+                            "[drive]\nprofile = motor\nstall_torque = 2\nno_load_speed = 10\n"}};
   for (const auto& [name, text] : scenes) {
     INFO(name);
     write_file_atomically(dir / (name + ".ini"), text);
