@@ -15,7 +15,7 @@ mkdir -p "$findings"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-abort_on_error=1:print_stacktrace=1}
 status=0
-for target in scene stages rawfile deck machine; do
+for target in scene stages rawfile deck machine manifest result drive_table; do
   mkdir -p "$scratch/$target"
   log="$scratch/$target.log"
   if "$build/fuzz_$target" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -timeout=10 \

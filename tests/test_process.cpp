@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <filesystem>
@@ -127,6 +128,48 @@ TEST_CASE("a signal to verify kills ngspice's group, removes its scratch folder 
     CHECK(fs::is_empty(tmp));  // no scratch folder left
     INFO(slurp(test.path / "log.txt"));
     CHECK(slurp(test.path / "log.txt").find("killed") == std::string::npos);  // no report of the kill
+  }
+}
+
+TEST_CASE("a signal to a sweep or Monte Carlo pool stops every worker, its ngspice and every scratch folder",
+          "[common]") {
+  for (const std::string command : {"sweep", "monte-carlo"}) {
+    for (int sig : {SIGTERM, SIGINT}) {
+      INFO(command << ", signal " << sig);
+      TestDir test;
+      const fs::path bin = test.path / "bin", tmp = test.path / "tmp", pids = test.path / "pids";
+      fs::create_directories(bin);
+      fs::create_directories(tmp);
+      fs::create_directories(pids);
+      // Each fake ngspice and its grandchild sleep; both write their pid into pids/.
+      write_script(bin / "ngspice", fmt::format("sleep 60 &\necho $! > {0}/sleep.$!\necho $$ > {0}/ngspice.$$\nwait",
+                                                pids.string()));
+      std::vector<std::string> args{GEARPATCH_BINARY, command, testing::source_path("scenes/bild5a.ini"), "--jobs", "2"};
+      if (command == "sweep") args.insert(args.end(), {"--set", "gear.restitution=0.5,1", "--verify"});
+      else args.insert(args.end(), {"-n", "2"});
+      const pid_t pool = start(args, bin.string() + ":/usr/bin:/bin", tmp, test.path / "log.txt");
+      std::vector<pid_t> started;
+      for (int i = 0; i < 1000 && started.size() < 4; ++i) {
+        std::this_thread::sleep_for(20ms);
+        started.clear();
+        for (const auto& entry : fs::directory_iterator(pids))
+          if (!slurp(entry.path()).empty()) started.push_back(std::stoi(slurp(entry.path())));
+      }
+      REQUIRE(started.size() == 4);  // two workers, each with an ngspice and its sleep
+
+      REQUIRE(kill(pool, sig) == 0);
+      int status = 0;
+      REQUIRE(waitpid(pool, &status, 0) == pool);
+      CHECK(WIFSIGNALED(status));
+      if (WIFSIGNALED(status)) CHECK(WTERMSIG(status) == sig);
+      bool gone = false;
+      for (int i = 0; i < 100 && !gone; ++i, std::this_thread::sleep_for(20ms))
+        gone = std::all_of(started.begin(), started.end(), process_gone);
+      CHECK(gone);
+      if (!gone)
+        for (pid_t pid : started) kill(pid, SIGKILL);
+      CHECK(fs::is_empty(tmp));  // no worker's scratch folder, no run folder left
+    }
   }
 }
 

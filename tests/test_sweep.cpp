@@ -64,26 +64,42 @@ TEST_CASE("a swept value keeps its line in the scene, and a bad one is refused w
 }
 
 TEST_CASE("the pool runs every job; a failed one is counted and named, never lost", "[sweep]") {
+  std::vector<int> ran(3, 0);
+  const runs::PoolReport report = runs::run_pool(
+      3, 2,
+      [&](std::size_t i) -> std::string {
+        ++ran[i];
+        if (i == 1) throw Error("the bearing seized");
+        return i == 2 ? "no result written" : "";
+      },
+      "test");
+  CHECK(ran == std::vector<int>{1, 1, 1});
+  CHECK(report.done == 1);
+  REQUIRE(report.failures.size() == 2);
+  CHECK(report.failures[0] == std::make_pair(std::size_t{1}, std::string("the bearing seized")));
+  CHECK(report.failures[1] == std::make_pair(std::size_t{2}, std::string("no result written")));
+}
+
+TEST_CASE("a point that cannot run leaves its reason as its result, named in the merged table", "[sweep]") {
   testing::TempFolder dir("runs");
-  const runs::RunFolder folder(dir.path / "run");
-  // Each job gets "--result PATH" appended: $1 and $2 of the shell below.
-  const std::vector<runs::Job> jobs = {
-      {"first", {"sh", "-c", "printf '{\"x\": 1}' > \"$2\"", "sh"}},
-      {"broken", {"sh", "-c", "echo the bearing seized >&2; exit 3", "sh"}},
-      {"third", {"sh", "-c", "printf '{\"x\": 3}' > \"$2\"", "sh"}}};
-  folder.write({{"kind", "test"}}, jobs);
-  const runs::PoolReport report = runs::run_jobs(folder, jobs, 2, "test");
-  CHECK(report.done == 2);
-  REQUIRE(report.failures.size() == 1);
-  CHECK(report.failures[0].first == 1);
-  CHECK(report.failures[0].second == "broken: exit status 3: the bearing seized");
-  const std::vector<runs::JobOutcome> outcomes = runs::collect_results(folder);
-  REQUIRE(outcomes.size() == 3);
-  CHECK(outcomes[0].result->at("x") == 1);
-  CHECK(!outcomes[1].result);
-  CHECK_THAT(outcomes[1].failure, Catch::Contains("the bearing seized"));
-  CHECK(outcomes[2].result->at("x") == 3);
-  CHECK_THROWS_WITH(folder.write({{"kind", "test"}}, jobs), Catch::Contains("holds a study already"));
+  std::string output;
+  // A drive table that vanishes after the study was written: the job fails, and says why.
+  write_file_atomically(dir / "table.csv", "0, 1\n1, 2\n");
+  std::string scene = read_file(testing::scene_path("bild5b"));
+  write_file_atomically(dir / "s.ini", scene + "[drive]\nprofile = table\ntable = table.csv\n");
+  REQUIRE(testing::run_command(kBinary + " sweep " + dir / "s.ini" + " --set gear.restitution=0.5,1 --job-list " +
+                                   dir / "run",
+                               output) == 0);
+  CHECK_THAT(read_file(dir / "run/inputs/s.ini"), Catch::Contains("table = " + dir / "table.csv"));
+  REQUIRE(testing::run_command(kBinary + " job " + dir / "run" + " 0", output) == 0);
+  fs::remove(dir.path / "table.csv");
+  CHECK(testing::run_command(kBinary + " job " + dir / "run" + " 1", output) == 2);
+  CHECK(testing::run_command(kBinary + " merge " + dir / "run" + " --json " + dir / "m.json", output) == 3);
+  CHECK_THAT(output, Catch::Contains("1 failed") && Catch::Contains("failed: gear.restitution=1: ") &&
+                         Catch::Contains("drive.table"));
+  const nlohmann::json merged = testing::read_json(dir / "m.json");
+  CHECK(merged.at("points").at(0).contains("figures"));
+  CHECK_THAT(merged.at("points").at(1).at("failure").get<std::string>(), Catch::Contains("not a regular file"));
 }
 
 TEST_CASE("a sweep of k on bild5b achieves each k per impact and draws the overlay", "[sweep]") {
@@ -147,7 +163,9 @@ TEST_CASE("--machine patches every point on that machine, also in the jobs of a 
   REQUIRE(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5 --machine classic" +
                                    " --job-list " + dir / "run",
                                output) == 0);
-  CHECK_THAT(read_file(dir / "run/jobs.txt"), Catch::Contains("--machine classic"));
+  CHECK(testing::read_json(dir / "run/manifest.json").at("study").at("machine") == "classic");
+  REQUIRE(testing::run_command(kBinary + " job " + dir / "run" + " 0", output) == 0);
+  CHECK(testing::read_json(dir / "run/results/0000.json").at("label") == "gear.restitution=0.5");
   CHECK(testing::run_command(kBinary + " sweep " + testing::scene_path("bild5b") + " --set gear.restitution=0.5 --machine no-such" +
                                  " --json " + dir / "x.json",
                              output) == 2);

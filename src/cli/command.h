@@ -39,7 +39,12 @@ struct MonteCarloOutputPaths {
 };
 /// Summarises a Monte Carlo run folder (however its draws were run) into
 /// the table, JSON and histogram; 3 if a draw has no result.
-int merge_monte_carlo(const runs::RunFolder& folder, const MonteCarloOutputPaths& paths);
+int merge_monte_carlo(const runs::RunFolder& folder, const runs::Manifest& manifest, const MonteCarloOutputPaths& paths);
 int run_random_scenes(const std::vector<std::string>& args);
+int run_job(const std::vector<std::string>& args);
+
+/// Draw `index` of a run folder's Monte Carlo, from the folder's own inputs;
+/// its result without the run's identity.
+nlohmann::json run_monte_carlo_job(const runs::RunFolder& folder, const runs::Manifest& manifest, std::size_t index);
 
 }  // namespace gearpatch::cli

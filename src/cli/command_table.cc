@@ -16,6 +16,7 @@ const std::vector<Command>& commands() {
       {"monte-carlo", "tolerance Monte Carlo: N hardware runs on drawn components; yield, spread, --plot", run_monte_carlo},
       {"merge", "the table and plots of a run folder whose jobs ran elsewhere (GNU Parallel, Slurm)", run_merge},
       {"figures", "the paper's Bild 5a-c and 6a-c from the example scenes (-o docs/figures)", run_figures},
+      {"job", "run one job of a run folder: gearpatch job RUNDIR INDEX (what jobs.txt and slurm.sh call)", run_job},
       {"random-scenes", "seeded random scenes over every feature class, for testing verify", run_random_scenes},
   };
   return table;

@@ -10,6 +10,40 @@
 #include "figures/paper_figures.h"
 
 namespace gearpatch::cli {
+namespace {
+
+/// The folders made for -o, removed again (when still empty) unless the
+/// figures were written: a failed run leaves no path behind.
+class MadeFolders {
+ public:
+  explicit MadeFolders(const std::filesystem::path& dir) {
+    std::error_code ec;
+    for (auto p = std::filesystem::absolute(dir).lexically_normal(); !p.empty() && !std::filesystem::exists(p, ec);
+         p = p.parent_path()) {
+      made_.push_back(p);
+      if (p == p.parent_path()) break;
+    }
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+      undo();
+      throw Error(fmt::format("-o {}: cannot make the folder: {}", dir.string(), ec.message()));
+    }
+  }
+  MadeFolders(const MadeFolders&) = delete;
+  MadeFolders& operator=(const MadeFolders&) = delete;
+  ~MadeFolders() { undo(); }
+  void keep() { made_.clear(); }
+
+ private:
+  void undo() {
+    std::error_code ec;
+    for (const auto& p : made_) std::filesystem::remove(p, ec);  // deepest first; only an empty folder goes
+    made_.clear();
+  }
+  std::vector<std::filesystem::path> made_;
+};
+
+}  // namespace
 
 int run_figures(const std::vector<std::string>& args) {
   po::options_description options("figures options");
@@ -31,8 +65,7 @@ int run_figures(const std::vector<std::string>& args) {
   const std::string format = vm["format"].as<std::string>();
   if (format != "png" && format != "svg") throw Error("--format " + format + ": png or svg");
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error(fmt::format("-o {}: cannot make the folder: {}", dir.string(), ec.message()));
+  MadeFolders made(dir);
   OutputSet outputs;  // every target checked, and gnuplot found, before the first run
   plot_format((dir / ("bild5a." + format)).string(), "-o");
   for (const figures::PaperFigure& f : figures::paper_figures()) {
@@ -50,6 +83,7 @@ int run_figures(const std::vector<std::string>& args) {
   }
   outputs.stage("numbers", numbers.dump(1) + "\n");
   outputs.commit();
+  made.keep();
   return 0;
 }
 

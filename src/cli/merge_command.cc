@@ -18,7 +18,10 @@ int run_merge(const std::vector<std::string>& args) {
                        "Reads the results of a run folder written by `sweep --job-list` or `monte-carlo --job-list` (however its\n"
                        "jobs were run: GNU Parallel, a Slurm array, by hand) and writes the same\n"
                        "table, CSV, JSON and plots as the sweep itself. A job without a result is\n"
-                       "counted and named. Exit status as sweep's.",
+                       "counted and named. Every file is checked first: a result of another run, of\n"
+                       "other inputs or of the wrong shape, a link, FIFO or device, or a manifest\n"
+                       "that disagrees with its jobs is refused, naming the file (exit 2).\n"
+                       "Otherwise exit status as sweep's.",
                        options,
                        {"gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:4 --job-list runs/c",
                         "parallel -S : < runs/c/jobs.txt   # ':' is this machine; --sshloginfile FILE for hosts",
@@ -27,9 +30,10 @@ int run_merge(const std::vector<std::string>& args) {
     return 0;
   const runs::RunFolder folder(single_file(vm, "merge", "RUNDIR"));
   const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };
-  if (tolerance::is_monte_carlo(folder.manifest().at("study"))) {
+  const runs::Manifest manifest = folder.manifest();
+  if (tolerance::is_monte_carlo(manifest.study)) {
     if (vm.count("csv") || vm.count("figures-plot")) throw Error("merge: --csv and --figures-plot are a sweep's; a Monte Carlo has --json and --plot");
-    return merge_monte_carlo(folder, {main_output(vm, {"json"}), get("json"), get("plot")});
+    return merge_monte_carlo(folder, manifest, {main_output(vm, {"json"}), get("json"), get("plot")});
   }
   sweep::SweepOutputs outputs({main_output(vm, {"json", "csv"}), get("json"), get("csv"), get("plot"),
                                get("figures-plot")});

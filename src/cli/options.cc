@@ -1,6 +1,7 @@
 #include "cli/options.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fmt/format.h>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "common/error.h"
 #include "common/option_error.h"
 #include "machine/machine_file.h"
+#include "runs/pool.h"
 
 namespace gearpatch::cli {
 
@@ -117,15 +119,45 @@ void add_machine_option(po::options_description& options) {
 }
 
 void add_run_folder_options(po::options_description& options, const std::string& unit) {
-  const std::string one = "run only " + unit + " I (0-based) and write its result JSON to --result "
-                          "(what each job of the run folder does)";
-  const std::string result = "with --" + unit + ": the result file";
+  const std::string jobs = fmt::format("{}s run at once, 1 … {} (4 × the cores; above the {} cores a warning; "
+                                       "default: the cores)",
+                                       unit, 4 * runs::core_count(), runs::core_count());
   options.add_options()
-      ("run-dir", po::value<std::string>(), "keep the run folder (jobs, results, logs) in DIR, a new folder")
-      ("job-list", po::value<std::string>(), "only write the run folder DIR: jobs.txt for GNU Parallel, "
-       "slurm.sh for a Slurm array; run them, then `gearpatch merge DIR`")
-      (unit.c_str(), po::value<std::size_t>(), one.c_str())
-      ("result", po::value<std::string>(), result.c_str());
+      ("jobs,j", po::value<std::string>(), jobs.c_str())
+      ("run-dir", po::value<std::string>(), "keep the run folder (inputs, jobs, results, logs) in DIR, a new or "
+       "empty folder")
+      ("job-list", po::value<std::string>(), "only write the run folder DIR (new or empty): jobs.txt for GNU "
+       "Parallel, slurm.sh for a Slurm array, each line `gearpatch job DIR I`; run them, then `gearpatch merge DIR`");
+}
+
+std::size_t count_option(const po::variables_map& vm, const std::string& name, std::size_t least, std::size_t most,
+                         std::size_t otherwise) {
+  if (!vm.count(name)) return otherwise;
+  const std::string text = vm[name].as<std::string>();
+  // Digits only: "-1" would wrap to 2^64 − 1 and "1e12" is no count.
+  const bool digits = !text.empty() && text.size() <= 12 && text.find_first_not_of("0123456789") == std::string::npos;
+  const std::size_t value = digits ? std::stoull(text) : 0;
+  if (!digits || value < least || value > most)
+    throw Error(fmt::format("--{} {}: must be a whole number in [{}, {}]", name, text.substr(0, 40), least, most));
+  return value;
+}
+
+unsigned jobs_option(const po::variables_map& vm, const std::string& command) {
+  const unsigned cores = runs::core_count();
+  const auto jobs = static_cast<unsigned>(count_option(vm, "jobs", 1, 4 * std::size_t{cores}, cores));
+  if (jobs > cores)
+    std::fprintf(stderr, "gearpatch %s: warning: --jobs %u is more than the %u cores; the jobs share them\n",
+                 command.c_str(), jobs, cores);
+  return jobs;
+}
+
+void print_run_folder_hint(const std::string& command, const runs::RunFolder& folder, std::size_t jobs) {
+  const std::string dir = folder.dir().string();
+  fmt::print(stderr,
+             "gearpatch {}: {} jobs in {}\n  run them:  parallel --sshloginfile HOSTS < {}\n"
+             "         or sbatch {}\n  then:      gearpatch merge {}\n",
+             command, jobs, dir, runs::shell_quote(dir + "/jobs.txt"), runs::shell_quote(dir + "/slurm.sh"),
+             runs::shell_quote(dir));
 }
 
 std::string chosen_machine(const po::variables_map& vm) {

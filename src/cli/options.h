@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "circuit/netlist.h"
+#include "runs/job_list.h"
 
 namespace gearpatch::cli {
 
@@ -56,9 +57,19 @@ circuit::TransientControl chosen_quality(const po::variables_map& vm);
 /// Adds --machine NAME|FILE, the machine profile the scene is patched on.
 void add_machine_option(po::options_description& options);
 
-/// --run-dir, --job-list, and the one-job pair --UNIT I / --result that each
-/// job of a run folder runs (UNIT: "point" for sweep, "draw" for monte-carlo).
+/// --jobs, --run-dir and --job-list of a study whose jobs are `unit`s ("point", "draw").
 void add_run_folder_options(po::options_description& options, const std::string& unit);
+
+/// A count option given as text: digits only, in [least, most], else Error
+/// (exit 2) before any work; `otherwise` when it is absent.
+std::size_t count_option(const po::variables_map& vm, const std::string& name, std::size_t least, std::size_t most,
+                         std::size_t otherwise);
+
+/// --jobs: 1 … 4 × the cores (default the cores), a warning on stderr above the cores.
+unsigned jobs_option(const po::variables_map& vm, const std::string& command);
+
+/// How to run a written run folder, its paths quoted for a shell, on stderr.
+void print_run_folder_hint(const std::string& command, const runs::RunFolder& folder, std::size_t jobs);
 
 /// The --machine given, or "" for the scene's own machine.profile.
 std::string chosen_machine(const po::variables_map& vm);

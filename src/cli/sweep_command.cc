@@ -9,6 +9,7 @@
 #include "common/error.h"
 #include "common/scratch_dir.h"
 #include "runs/pool.h"
+#include "sweep/study_inputs.h"
 #include "sweep/sweep_outputs.h"
 #include "sweep/sweep_study.h"
 
@@ -44,17 +45,16 @@ sweep::SweepOutputPaths output_paths(const po::variables_map& vm) {
 
 int run_sweep(const std::vector<std::string>& args) {
   po::options_description options("sweep options");
-  const std::string jobs_help = fmt::format("points run at once (default: the cores, here {})", runs::core_count());
   options.add_options()
       ("set", po::value<std::vector<std::string>>()->composing(),
        "KEY=VALUES: a scene key (as in the scene file: gear.restitution) and its values, comma-separated; "
        "an item start:stop:count is a linear range, log:start:stop:count a logarithmic one (ends included). "
-       "Repeat --set for a cartesian product")
+       "Repeat --set for a cartesian product (at most 10000 points). A value is one line of the key's value: no "
+       "newline, '#', '=', '[' or ']'")
       ("verify", "also run the circuit with ngspice at every point and compare (as verify)")
       ("level", po::value<std::string>()->default_value("ideal"), "with --verify: ideal or hardware")
       ("signals", po::value<std::string>()->default_value("omega_p,omega_s"),
        "the signals of the --plot overlay: omega_p, omega_s, dphi, m0, comma-separated")
-      ("jobs,j", po::value<unsigned>(), jobs_help.c_str())
       ("csv", po::value<std::string>(), "write the table as CSV to FILE")
       ("plot", po::value<std::string>(), "overlay of the --signals of every point over time (.png or .svg)")
       ("figures-plot", po::value<std::string>(), "each figure against the first swept key (.png or .svg)");
@@ -79,30 +79,21 @@ int run_sweep(const std::vector<std::string>& args) {
                        vm))
     return 0;
   const sweep::SweepStudy study = study_from_options(vm);
-  if (vm.count("point")) {
-    if (!vm.count("result")) throw Error("--point needs --result FILE");
-    sweep::run_sweep_point(study, vm["point"].as<std::size_t>(), vm["result"].as<std::string>());
-    return 0;
-  }
-  if (vm.count("result")) throw Error("--result is for --point");
   sweep::check_points(study, single_file(vm, "sweep"));  // every bad key or value refused before anything runs
   const std::vector<runs::Job> jobs = sweep::sweep_jobs(study);
+  const runs::StudyInputs inputs = sweep::study_inputs(study.scene_path, study.machine);
   if (vm.count("job-list")) {
     const runs::RunFolder folder(vm["job-list"].as<std::string>());
-    folder.write(sweep::to_json(study), jobs);
-    fmt::print(stderr, "gearpatch sweep: {} jobs in {}\n  run them:  parallel --sshloginfile HOSTS < {}/jobs.txt\n"
-               "         or sbatch --array=1-{} {}/slurm.sh\n  then:      gearpatch merge {}\n",
-               jobs.size(), folder.dir().string(), folder.dir().string(), jobs.size(), folder.dir().string(),
-               folder.dir().string());
+    folder.create(sweep::to_json(study), inputs, jobs);
+    print_run_folder_hint("sweep", folder, jobs.size());
     return 0;
   }
   sweep::SweepOutputs outputs(output_paths(vm));
-  const unsigned workers = vm.count("jobs") ? vm["jobs"].as<unsigned>() : runs::core_count();
-  if (workers < 1) throw Error("--jobs 0: run at least one point at a time");
+  const unsigned workers = jobs_option(vm, "sweep");
   std::optional<ScratchDir> scratch;
   if (!vm.count("run-dir")) scratch.emplace("gearpatch-sweep");
   const runs::RunFolder folder(scratch ? scratch->path() / "run" : std::filesystem::path(vm["run-dir"].as<std::string>()));
-  folder.write(sweep::to_json(study), jobs);
+  folder.create(sweep::to_json(study), inputs, jobs);
   fmt::print(stderr, "gearpatch sweep: {} points on {} workers\n", jobs.size(), workers);
   runs::run_jobs(folder, jobs, workers, "gearpatch sweep");
   return sweep::merge_and_write(folder, outputs);

@@ -22,6 +22,8 @@ constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
 struct Registry {
   std::mutex lock;
   std::set<pid_t> children;
+  std::set<pid_t> stopping_themselves;  ///< children sent SIGTERM, to clean up their own children
+
   std::set<fs::path> scratch;
 };
 
@@ -40,6 +42,22 @@ extern "C" void on_signal(int sig) {
   errno = saved;
 }
 
+/// Sends SIGTERM to each child that cleans up after itself and waits for
+/// them all, up to ten seconds; one still running then is killed.
+void stop_gently(const std::set<pid_t>& children) {
+  for (pid_t pid : children) ::kill(pid, SIGTERM);
+  std::set<pid_t> running = children;
+  for (int tick = 0; tick < 1000 && !running.empty(); ++tick) {
+    for (auto it = running.begin(); it != running.end();)
+      it = ::waitpid(*it, nullptr, WNOHANG) != 0 ? running.erase(it) : std::next(it);
+    if (!running.empty()) ::usleep(10000);
+  }
+  for (pid_t pid : running) {
+    ::kill(-pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+  }
+}
+
 /// Waits for a signal, undoes what is live, and dies of the signal. Keeps the
 /// lock so that the main thread cannot spawn, reap or clean up meanwhile.
 [[noreturn]] void watch() {
@@ -49,7 +67,9 @@ extern "C" void on_signal(int sig) {
   const int sig = byte;
   Registry& r = registry();
   r.lock.lock();
-  for (pid_t pid : r.children) ::kill(-pid, SIGKILL);
+  for (pid_t pid : r.children)
+    if (!r.stopping_themselves.count(pid)) ::kill(-pid, SIGKILL);
+  stop_gently(r.stopping_themselves);
   for (const fs::path& path : r.scratch) {
     std::error_code ec;
     fs::remove_all(path, ec);
@@ -99,12 +119,13 @@ void drop_scratch(const fs::path& path, bool keep) {
   if (!keep) fs::remove_all(path, ec);
 }
 
-pid_t add_child(const std::function<pid_t()>& spawn) {
+pid_t add_child(const std::function<pid_t()>& spawn, bool stops_itself) {
   install_once();
   Registry& r = registry();
   std::lock_guard guard(r.lock);
   const pid_t pid = spawn();
   r.children.insert(pid);
+  if (stops_itself) r.stopping_themselves.insert(pid);
   return pid;
 }
 
@@ -115,6 +136,7 @@ std::optional<int> poll_child(pid_t pid) {
   const pid_t done = ::waitpid(pid, &status, WNOHANG);
   if (done == 0 || (done < 0 && errno == EINTR)) return std::nullopt;
   r.children.erase(pid);
+  r.stopping_themselves.erase(pid);
   if (done < 0) throw Error(std::string("waiting for a child process failed: ") + std::strerror(errno));
   return status;
 }
@@ -127,6 +149,7 @@ void kill_child(pid_t pid) {
   while (::waitpid(pid, nullptr, 0) < 0 && errno == EINTR) {
   }
   r.children.erase(pid);
+  r.stopping_themselves.erase(pid);
 }
 
 }  // namespace gearpatch::interrupt

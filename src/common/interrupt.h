@@ -9,7 +9,7 @@ namespace gearpatch::interrupt {
 
 /// What an interrupted run must undo, kept while it is live: the process
 /// groups of running children, scratch folders and staged output files. On
-/// SIGINT, SIGTERM or SIGHUP a watcher thread kills every group, removes every
+/// SIGINT, SIGTERM or SIGHUP a watcher thread kills every group (or stops it, below), removes every
 /// scratch path and then ends the program by that same signal (a shell sees
 /// 128 + n). A signal the program was started with ignored stays ignored.
 ///
@@ -25,8 +25,11 @@ std::filesystem::path add_scratch(const std::function<std::filesystem::path()>& 
 void drop_scratch(const std::filesystem::path& path, bool keep);
 
 /// Starts a child with `spawn` (which returns its pid, the leader of its own
-/// process group) and registers the group.
-pid_t add_child(const std::function<pid_t()>& spawn);
+/// process group) and registers the group. A child that `stops_itself` (a
+/// gearpatch worker with an ngspice and a scratch folder of its own) is sent
+/// SIGTERM on an interrupt and waited for (up to 10 s) instead of killed, so
+/// that it undoes what it started.
+pid_t add_child(const std::function<pid_t()>& spawn, bool stops_itself = false);
 
 /// The child's wait status once it has ended (then it is unregistered),
 /// nothing while it runs.

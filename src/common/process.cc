@@ -142,7 +142,7 @@ pid_t spawn(const ChildSpec& spec) {
       throw Error(fmt::format("cannot start {} '{}': {}", spec.name, program->string(), std::strerror(err)),
                   spec.failure_kind);
     return pid;
-  });
+  }, spec.stops_itself);
 }
 
 std::uintmax_t size_or_zero(const fs::path& path) {

@@ -25,6 +25,7 @@ struct ChildSpec {
   std::chrono::milliseconds timeout{std::chrono::minutes(5)};
   std::uintmax_t max_output_bytes = std::uintmax_t{1} << 30;
   Error::Kind failure_kind = Error::Kind::simulator;  ///< of the errors thrown below
+  bool stops_itself = false;  ///< on an interrupt: sent SIGTERM and waited for (common/interrupt.h)
 };
 
 /// How a child ended: its exit code, or the signal that killed it.

@@ -87,8 +87,10 @@ std::map<std::string, int> locate(const std::string& text, const std::string& so
     if (line.empty()) continue;
     const std::string where = fmt::format("{}:{}: ", source, number);
     if (line.front() == '[') {
-      if (line.back() != ']' || trimmed(line.substr(1, line.size() - 2)).empty())
-        throw Error(where + "bad section header '" + line + "'");
+      // Boost keeps blanks inside the brackets: "[ gear ]" would make keys " gear .x", found on no line.
+      if (line.back() != ']' || trimmed(line.substr(1, line.size() - 2)).empty() ||
+          line.find_first_of(" \t", 1) < line.size() - 1)
+        throw Error(where + "bad section header '" + line + "' (no blanks inside the brackets: [machine])");
       section = trimmed(line.substr(1, line.size() - 2));
       continue;
     }

@@ -45,9 +45,8 @@ double DriveProfile::slope(double t) const {
 }
 
 double DriveProfile::next_breakpoint(double t) const {
-  for (const auto& [time, torque] : points_)
-    if (time > t) return time;
-  return std::numeric_limits<double>::infinity();
+  const long i = last_at_or_before(points_, t);  // a binary search: a long table costs log n per step
+  return i + 1 < static_cast<long>(points_.size()) ? points_[i + 1].first : std::numeric_limits<double>::infinity();
 }
 
 bool DriveProfile::piecewise_constant() const {

@@ -11,6 +11,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/process.h"
+#include "runs/run_files.h"
 
 namespace gearpatch::runs {
 namespace {
@@ -19,19 +20,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-/// The last non-empty line of a log, for naming a failure.
-std::string last_line(const std::filesystem::path& log) {
-  std::string text;
-  try {
-    text = read_file(log.string());
-  } catch (const Error&) {
-    return "";
-  }
-  while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
-  const auto cut = text.rfind('\n');
-  return cut == std::string::npos ? text : text.substr(cut + 1);
 }
 
 }  // namespace
@@ -85,27 +73,25 @@ PoolReport run_pool(std::size_t count, unsigned workers, const std::function<std
 
 PoolReport run_jobs(const RunFolder& folder, const std::vector<Job>& jobs, unsigned workers,
                     const std::string& name) {
+  const std::string self = own_executable();
   return run_pool(
       jobs.size(), workers,
       [&](std::size_t i) -> std::string {
-        const std::vector<std::string> argv = folder.job_argv(jobs[i], i);
         ChildSpec spec;
         spec.name = name + " job " + std::to_string(i);
-        spec.program = argv.front();
-        spec.args.assign(argv.begin() + 1, argv.end());
-        spec.directory = std::filesystem::current_path();
-        spec.stdout_file = std::filesystem::absolute(folder.log_path(i)).string() + ".out";
-        spec.stderr_file = std::filesystem::absolute(folder.log_path(i));
+        spec.program = self;
+        spec.args = {"job", folder.dir().string(), std::to_string(i)};
+        spec.directory = folder.dir();
+        spec.stdout_file = "/dev/null";  // the job writes its log itself
+        spec.stderr_file = "/dev/null";
         spec.timeout = std::chrono::hours(24);
+        spec.stops_itself = true;
         const ChildExit exit = run_child(spec);
-        std::error_code ec;
-        const bool written = std::filesystem::exists(folder.result_path(i), ec);
-        if (exit.exit_code == 0 && !exit.signal && written) return "";
+        if (exit.exit_code == 0 && !exit.signal && exists_at_all(folder.result_path(i))) return "";
         const std::string how = exit.signal ? fmt::format("killed by signal {}", *exit.signal)
                                 : exit.exit_code != 0 ? fmt::format("exit status {}", exit.exit_code)
                                                       : std::string("no result written");
-        const std::string why = last_line(folder.log_path(i));
-        return fmt::format("{}: {}{}{}", jobs[i].label, how, why.empty() ? "" : ": ", why);
+        return fmt::format("{}: {}", jobs[i].label, how);
       },
       name);
 }

@@ -24,10 +24,11 @@ struct PoolReport {
 PoolReport run_pool(std::size_t count, unsigned workers, const std::function<std::string(std::size_t)>& task,
                     const std::string& name);
 
-/// Runs the jobs of a written RunFolder as child processes (common/process.h),
-/// `workers` at a time: each writes its result file, its stderr to its log.
-/// A job that exits nonzero or writes no result is a failure, named by its
-/// label and the last line of its log.
+/// Runs the jobs of a created RunFolder as child processes `gearpatch job
+/// RUNDIR I` (common/process.h), `workers` at a time, as GNU Parallel would:
+/// each writes its result and its log. A job that exits nonzero or writes no
+/// result is a failure, named by its label and how it ended. On an
+/// interrupt each running job is sent SIGTERM and cleans up after itself.
 PoolReport run_jobs(const RunFolder& folder, const std::vector<Job>& jobs, unsigned workers,
                     const std::string& name);
 

@@ -1,5 +1,6 @@
 #include "scene/drive_table.h"
 
+#include <cmath>
 #include <sstream>
 
 #include "common/atomic_file.h"
@@ -7,11 +8,22 @@
 #include "common/numbers.h"
 
 namespace gearpatch {
+namespace {
+
+/// The ranges of the scene's own values: 0, or 1e-30 … 1e30 in magnitude.
+void check_magnitude(double value, const std::string& what) {
+  if (std::abs(value) > 1e30) throw Error(what + ": larger in magnitude than 1e30, as no scene value may be");
+  if (value != 0 && std::abs(value) < 1e-30)
+    throw Error(what + ": smaller in magnitude than 1e-30 (and not 0), as no scene value may be");
+}
+
+}  // namespace
 
 std::vector<std::pair<double, double>> parse_drive_table(const std::string& text,
                                                          const std::string& source) {
   std::vector<std::pair<double, double>> points;
-  std::istringstream in(text);
+  // A byte-order mark, as a spreadsheet writes it, is no part of the first time.
+  std::istringstream in(text.starts_with("\xEF\xBB\xBF") ? text.substr(3) : text);
   std::string line;
   for (int number = 1; std::getline(in, line); ++number) {
     if (auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
@@ -27,6 +39,10 @@ std::vector<std::pair<double, double>> parse_drive_table(const std::string& text
     if (!t) throw Error(where + "time " + words[0] + ": not a finite number");
     if (!m) throw Error(where + "torque " + words[1] + ": not a finite number");
     if (*t < 0) throw Error(where + "time " + words[0] + ": must be >= 0");
+    check_magnitude(*t, where + "time " + words[0]);
+    check_magnitude(*m, where + "torque " + words[1]);
+    if (points.size() == most_drive_table_rows)
+      throw Error(where + "more than " + std::to_string(most_drive_table_rows) + " rows");
     if (!points.empty() && *t < points.back().first)
       throw Error(where + "time " + words[0] + ": earlier than the line before (times must not decrease)");
     points.emplace_back(*t, *m);

@@ -81,7 +81,7 @@ const std::map<std::string, std::string>& scene_keys() {
       {"drive.ramp_start", "s, >= 0 (default 0): profile ramp, M_a = drive.torque until then"},
       {"drive.ramp_end", "s, > ramp_start: profile ramp, M_a linear from drive.torque to drive.ramp_torque"},
       {"drive.ramp_torque", "N·m: profile ramp, M_a from drive.ramp_end on"},
-      {"drive.table", "file of 'time, torque' lines (s, N·m; linear between, constant outside; path relative to the scene): profile table"},
+      {"drive.table", "file of 'time, torque' lines (s, N·m; linear between, constant outside; path relative to the scene; at most 100000 rows, values as the scene's): profile table"},
       {"drive.stall_torque", "M_stall, N·m, > 0: profile motor, M_a = M_stall·(1 − φ̇p/φ̇_noload)"},
       {"drive.no_load_speed", "φ̇_noload, rad/s or rpm, > 0: profile motor"},
       {"friction.viscous_primary", "b_p, N·m·s/rad, >= 0 (default 0): M = b_p·φ̇p"},
@@ -126,7 +126,7 @@ KeyLines locate_keys(const std::string& text) {
     }
     auto eq = line.find('=');
     std::string key = line.substr(0, eq);
-    key.erase(key.find_last_not_of(" \t") + 1);
+    key.erase(key.find_last_not_of(" \t\r") + 1);  // a CR before the '=' is a blank, as Boost reads it
     found[section.empty() ? key : section + "." + key].push_back(number);
   }
   return found;
@@ -145,6 +145,8 @@ void check_lines(const std::string& text, const std::string& source) {
       if (line.back() != ']') throw Error(where + "section header " + quoted_excerpt(line) + " lacks its closing ']'");
       if (significant(line.substr(1, line.size() - 2)).empty())
         throw Error(where + "empty section header " + quoted_excerpt(line) + ": name the section ([gear], [run], ...)");
+      if (line.find_first_of(" \t", 1) < line.size() - 1)
+        throw Error(where + "section header " + quoted_excerpt(line) + ": no blanks inside the brackets ([gear], [run], ...)");
     } else if (line.find('=') == std::string::npos || line.front() == '=') {
       throw Error(where + "invalid line " + quoted_excerpt(line) + ": expected key = value");
     }

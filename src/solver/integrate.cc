@@ -151,11 +151,32 @@ class StepBudget {
       : spec_(spec), window_(std::max<std::size_t>(4096, spec.max_steps / 64)) {}
 
   void count(double t, const GearModel& model, const Mode& mode) {
-    if (++steps_ - window_steps_ < window_ && steps_ <= spec_.max_steps) return;
+    ++steps_;
+    // Early looks at 4096, 8192, ... steps refuse only a run no budget could finish (steps of
+    // 1e-20 s, from in-range extremes): at full windows such a run would take minutes to refuse.
+    if (steps_ == early_at_ && early_at_ < window_) {
+      early_at_ *= 2;
+      const double needed = projected(t);
+      if (!(needed <= hopeless * static_cast<double>(spec_.max_steps))) refuse(t, needed, model, mode);
+    }
+    if (steps_ - window_steps_ < window_ && steps_ <= spec_.max_steps) return;
+    const double needed = projected(t);
+    if (steps_ > spec_.max_steps || needed > 2.0 * spec_.max_steps) refuse(t, needed, model, mode);
+    window_steps_ = steps_;
+    window_time_ = t;
+  }
+
+ private:
+  static constexpr double hopeless = 1e6;  ///< times the limit: more steps than a year of computing
+
+  double projected(double t) const {
     const double span = t - window_time_;
     const double rate = span > 0 ? (steps_ - window_steps_) / span : INFINITY;
-    const double needed = steps_ + rate * (spec_.duration - t);
-    if (steps_ > spec_.max_steps || needed > 2.0 * spec_.max_steps) {
+    return steps_ + rate * (spec_.duration - t);
+  }
+
+  [[noreturn]] void refuse(double t, double needed, const GearModel& model, const Mode& mode) const {
+    {
       const ModeDynamics d = model.dynamics(mode);
       const double weight = d.inv_p + d.inv_s * d.gain_s;
       throw Error::about_scene("", fmt::format(
@@ -172,14 +193,11 @@ class StepBudget {
                                   2 * std::numbers::pi / std::sqrt(weight * d.stiffness))
                     : std::string()));
     }
-    window_steps_ = steps_;
-    window_time_ = t;
   }
 
- private:
   const RunSpec& spec_;
   std::size_t window_;
-  std::size_t steps_ = 0, window_steps_ = 0;
+  std::size_t steps_ = 0, window_steps_ = 0, early_at_ = 4096;
   double window_time_ = 0;
 };
 

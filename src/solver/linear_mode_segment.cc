@@ -87,7 +87,10 @@ class LinearModeSegment : public Segment {
       if (b - a < 8 * (std::nextafter(a, INFINITY) - a)) return end_ = a;
       // 2. Each guard in turn on what the earlier ones left: the end moves
       //    to the earliest cut.
+      bisections_left_ = max_bisections;
       for (const Shape& g : shapes_) end = check(g, last_, end, 0);
+      // Undecided: no progress, which integrate() refuses with the resolution.
+      if (bisections_left_ < 0) return end_ = a;
       if (!(end.tau > last_.tau)) end = point(b - t0_);
     }
     // Far from every guard the step doubles (the bounds stop it growing
@@ -206,6 +209,9 @@ class LinearModeSegment : public Segment {
     }
     const double mid = a.tau + 0.5 * span;
     if (depth >= max_depth || !(mid > a.tau && mid < b.tau)) return b;
+    // Bounds too loose to decide anything (an inertia of 1e30 beside one of 1) would bisect
+    // every half down to max_depth on every step: out of bisections, the step is undecided.
+    if (--bisections_left_ < 0) return last_;
     const Point c = point(mid);
     const Point left = check(g, a, c, depth + 1);
     if (left.tau < c.tau) return left;
@@ -216,6 +222,9 @@ class LinearModeSegment : public Segment {
   /// Bisections per guard and interval: 2^−30 of a step resolves any dip
   /// the bounds can see; a guard still undecided there is left to the ends.
   static constexpr int max_depth = 30;
+  /// Bisections per step over all guards: far more than a decidable guard takes.
+  static constexpr int max_bisections = 1 << 16;
+  mutable int bisections_left_ = max_bisections;
 
   LinearMode system_;
   GrowthBound bound_;

@@ -6,11 +6,10 @@
 
 #include "common/error.h"
 #include "common/numbers.h"
+#include "runs/run_files.h"
 
 namespace gearpatch::sweep {
 namespace {
-
-constexpr std::size_t most_values = 10000;
 
 std::vector<std::string> split(const std::string& text, char at) {
   std::vector<std::string> parts;
@@ -57,7 +56,7 @@ std::string line_key(const std::string& raw, std::string& section) {
     return "";
   }
   std::string key = line.substr(0, line.find('='));
-  key.erase(key.find_last_not_of(" \t") + 1);
+  key.erase(key.find_last_not_of(" \t\r") + 1);  // a CR before the '=' is a blank, as Boost reads it
   return section.empty() ? key : section + "." + key;
 }
 
@@ -70,17 +69,37 @@ std::string alternative(const std::string& key) {
 
 }  // namespace
 
+void check_value(const std::string& value, const std::string& what) {
+  if (value.empty()) throw Error(fmt::format("{}: an empty value", what));
+  if (value.size() > most_value_bytes) throw Error(fmt::format("{}: a value longer than {} bytes", what, most_value_bytes));
+  for (char c : value) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f || c == '#' || c == '=' || c == '[' || c == ']')
+      throw Error(fmt::format("{}: a value is one line of a scene key's value: no newline or other control "
+                              "character, '#', '=', '[' or ']'",
+                              what));
+  }
+}
+
+void check_axis(const Axis& axis, const std::string& what) {
+  if (axis.key == "name" || !scene_keys().count(axis.key))
+    throw Error(fmt::format("{}: {}: {} (see `gearpatch --help-scene`)", what, runs::printable(axis.key),
+                            axis.key == "name" ? "the scene's name is not swept" : "unknown scene key"));
+  if (axis.values.empty() || axis.values.size() > most_values)
+    throw Error(fmt::format("{}: {} values; an axis has 1 … {}", what, axis.values.size(), most_values));
+  for (const std::string& v : axis.values) check_value(v, what);
+}
+
 Axis parse_axis(const std::string& option) {
+  const std::string what = "--set " + runs::printable(option);
   const auto eq = option.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw Error(fmt::format("--set {}: expected KEY=VALUES (gear.restitution=0,0.5,1)", option));
+    throw Error(fmt::format("{}: expected KEY=VALUES (gear.restitution=0,0.5,1)", what));
   Axis axis{option.substr(0, eq), {}};
-  if (axis.key == "name" || !scene_keys().count(axis.key))
-    throw Error(fmt::format("--set {}: {}: {} (see `gearpatch --help-scene`)", option, axis.key,
-                            axis.key == "name" ? "the scene's name is not swept" : "unknown scene key"));
+  check_axis({axis.key, {"0"}}, what);
   for (const std::string& item : split(option.substr(eq + 1), ',')) {
     const std::vector<std::string> parts = split(item, ':');
-    if (parts.size() == 1 && item.empty()) throw Error(fmt::format("--set {}: an empty value", option));
+    check_value(item, what);
     if (parts.size() == 1) axis.values.push_back(item);
     else if (parts.size() == 3 || parts.size() == 4)
       for (std::string& v : range_values(parts, option)) axis.values.push_back(std::move(v));
@@ -91,7 +110,19 @@ Axis parse_axis(const std::string& option) {
   return axis;
 }
 
+std::size_t point_count(const std::vector<Axis>& axes) {
+  std::size_t count = 1;
+  for (const Axis& axis : axes) {
+    // Checked before any point is made: three axes of 1000 values would be 1e9 points.
+    if (axis.values.size() > 0 && count > most_values / axis.values.size())
+      throw Error(fmt::format("the sweep has more than {} points (the product of its axes' values)", most_values));
+    count *= axis.values.size();
+  }
+  return count;
+}
+
 std::vector<Assignment> cartesian_points(const std::vector<Axis>& axes) {
+  point_count(axes);
   std::vector<Assignment> points{{}};
   for (const Axis& axis : axes) {
     std::vector<Assignment> longer;
@@ -102,7 +133,6 @@ std::vector<Assignment> cartesian_points(const std::vector<Axis>& axes) {
       }
     points = std::move(longer);
   }
-  if (points.size() > most_values) throw Error(fmt::format("the sweep has {} points, more than {}", points.size(), most_values));
   return points;
 }
 
@@ -137,6 +167,20 @@ std::string assign(const std::string& scene_text, const Assignment& point) {
                             point[i].first.substr(dot + 1), point[i].second);
   }
   return out + appended;
+}
+
+std::optional<std::string> scene_value(const std::string& scene_text, const std::string& key) {
+  std::istringstream in(scene_text);
+  std::string raw, section;
+  std::optional<std::string> value;
+  while (std::getline(in, raw)) {
+    if (line_key(raw, section) != key) continue;
+    std::string v = raw.substr(0, raw.find('#'));
+    v = v.substr(v.find('=') + 1);
+    const auto first = v.find_first_not_of(" \t\r");
+    value = first == std::string::npos ? "" : v.substr(first, v.find_last_not_of(" \t\r") + 1 - first);
+  }
+  return value;
 }
 
 Scene point_scene(const std::string& scene_text, const std::string& source, const Assignment& point,

@@ -1,4 +1,6 @@
 #pragma once
+#include <cstddef>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -23,8 +25,27 @@ using Assignment = std::vector<std::pair<std::string, std::string>>;
 /// count below 1 or above 10000.
 Axis parse_axis(const std::string& option);
 
+/// Most values of an axis and most points of a sweep; most bytes of a value.
+inline constexpr std::size_t most_values = 10000;
+inline constexpr std::size_t most_value_bytes = 1024;
+
+/// Error naming `what` unless `value` is one scene value: not empty, at most
+/// most_value_bytes, no control character (a newline would add a line to
+/// the scene), '#', '=', '[' or ']'.
+void check_value(const std::string& value, const std::string& what);
+/// Error naming `what` unless the axis names a scene key (not `name`) and
+/// has 1 … most_values values, each a scene value.
+void check_axis(const Axis& axis, const std::string& what);
+
+/// The number of points of the axes' product; Error above most_values,
+/// found before any point is made.
+std::size_t point_count(const std::vector<Axis>& axes);
+
 /// Every point of the cartesian product of the axes, the last axis fastest.
 std::vector<Assignment> cartesian_points(const std::vector<Axis>& axes);
+
+/// The value the scene text gives `key` ("drive.table"), as written; none if absent.
+std::optional<std::string> scene_value(const std::string& scene_text, const std::string& key);
 
 /// "gear.restitution=0.25 gear.backlash=0.1": a point's name in tables and plots.
 std::string point_label(const Assignment& point);

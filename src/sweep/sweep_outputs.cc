@@ -43,12 +43,41 @@ void SweepOutputs::write(const SweepTable& table) {
   for (const std::string& w : warnings) std::fprintf(stderr, "gearpatch sweep: warning: %s\n", w.c_str());
 }
 
+namespace {
+
+/// Error unless a point's result holds its own values and a trace whose
+/// columns are as long as its times, as the table and the plots read them.
+void check_point_result(const nlohmann::json& result, const Assignment& point, const std::vector<Signal>& signals,
+                        const std::string& source) {
+  nlohmann::json values = nlohmann::json::object();
+  for (const auto& [key, value] : point) values[key] = value;
+  if (result["values"] != values) throw Error(fmt::format("{}: its values are not its point's", source));
+  const nlohmann::json& trace = result["trace"];
+  for (Signal s : signals)
+    if (!trace.contains(to_string(s)) || trace[to_string(s)].size() != trace["t"].size())
+      throw Error(fmt::format("{}: /trace/{}: missing or not as long as /trace/t", source, to_string(s)));
+}
+
+}  // namespace
+
+SweepTable read_sweep(const runs::RunFolder& folder) {
+  const runs::Manifest manifest = folder.manifest();
+  const std::string source = (folder.dir() / "manifest.json").string();
+  SweepTable table{study_from_json(manifest.study, source), {}};
+  check_jobs(table.study, manifest, source);
+  table.points = runs::collect_results(folder, manifest, result_schema());
+  const std::vector<Assignment> points = table.study.points();
+  for (const runs::JobOutcome& o : table.points)
+    if (o.result) check_point_result(*o.result, points[o.index], table.study.options.signals, folder.result_path(o.index).string());
+  return table;
+}
+
 int merge_and_write(const runs::RunFolder& folder, SweepOutputs& outputs) {
-  const SweepTable table{study_from_json(folder.manifest().at("study")), runs::collect_results(folder)};
+  const SweepTable table = read_sweep(folder);
   outputs.write(table);
   if (table.failed() > 0) return 3;
   for (const runs::JobOutcome& o : table.points)
-    if (o.result->contains("verify") && !o.result->at("verify").at("passed").get<bool>()) return 1;
+    if (o.result->contains("verify") && !(*o.result)["verify"]["passed"].get<bool>()) return 1;
   return 0;
 }
 

@@ -28,7 +28,11 @@ class SweepOutputs {
   OutputSet set_;
 };
 
-/// Reads the results of a run folder (runs/results.h), writes `outputs`
+/// A run folder's sweep and its results, each checked (runs/results.h) and
+/// found to be its point's; Error (exit 2) naming the file otherwise.
+SweepTable read_sweep(const runs::RunFolder& folder);
+
+/// Reads the results of a run folder (read_sweep), writes `outputs`
 /// and returns the study's exit status: 3 if a point has no result, 1 if a
 /// verified point failed, else 0.
 int merge_and_write(const runs::RunFolder& folder, SweepOutputs& outputs);

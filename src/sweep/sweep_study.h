@@ -21,11 +21,14 @@ struct SweepStudy {
   std::string machine;  ///< --machine (a name, or an absolute profile path); "" for the scene's own
 
   std::vector<Assignment> points() const { return cartesian_points(axes); }
+  std::size_t point_count() const { return sweep::point_count(axes); }
 };
 
 nlohmann::json to_json(const SweepStudy& study);
-/// Error (exit 2) if `study` is not a sweep's manifest.
-SweepStudy study_from_json(const nlohmann::json& study);
+/// The study of a run folder's manifest, checked against its schema and
+/// as --set is (keys, values, the number of points): Error (exit 2) naming
+/// `source` otherwise.
+SweepStudy study_from_json(const nlohmann::json& study, const std::string& source);
 
 /// "omega_p,omega_s" -> the signals; Error naming --signals for an unknown one.
 std::vector<Signal> parse_signals(const std::string& list);
@@ -35,12 +38,19 @@ std::vector<Signal> parse_signals(const std::string& list);
 /// (the path as the user wrote it), before anything runs.
 void check_points(const SweepStudy& study, const std::string& source);
 
-/// One job per point: `gearpatch sweep SCENE --set ... --point I`, with the
-/// result path added by the run folder.
+/// One job per point: its label and input, the point's values.
 std::vector<runs::Job> sweep_jobs(const SweepStudy& study);
 
-/// Runs point `index` and writes its result JSON (its index, label, values
-/// and run_point's result) to `result_path`, atomically.
-void run_sweep_point(const SweepStudy& study, std::size_t index, const std::string& result_path);
+/// Error naming `source` (the manifest) unless its jobs are the study's points, in order.
+void check_jobs(const SweepStudy& study, const runs::Manifest& manifest, const std::string& source);
+
+/// Runs point `index` of a run folder's sweep from the folder's own inputs
+/// (scene, machine, the point's values, checked against their digest and
+/// the axes) and returns its result: label, values and run_point's result.
+nlohmann::json run_job(const SweepStudy& study, const runs::RunFolder& folder, const runs::Manifest& manifest,
+                       std::size_t index);
+
+/// The schema of a point's result (runs/results.h).
+nlohmann::json result_schema();
 
 }  // namespace gearpatch::sweep

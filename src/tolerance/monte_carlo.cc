@@ -45,21 +45,6 @@ MonteCarloStudy study_from_json(const nlohmann::json& j) {
   }
 }
 
-std::vector<runs::Job> monte_carlo_jobs(const MonteCarloStudy& s) {
-  std::vector<runs::Job> jobs;
-  for (std::size_t i = 0; i < s.runs; ++i) {
-    runs::Job job{fmt::format("draw {} (seed {})", i, draw_seed(s.seed, i)),
-                  {runs::own_executable(), "monte-carlo", s.scene_path, "--runs", std::to_string(s.runs), "--seed",
-                   std::to_string(s.seed), "--timeout", fmt::format("{}", s.timeout)}};
-    if (!s.machine.empty()) job.argv.insert(job.argv.end(), {"--machine", s.machine});
-    if (s.autoscale) job.argv.push_back("--autoscale");
-    if (s.tolerance) job.argv.insert(job.argv.end(), {"--tolerance", fmt::format("{}%", 100 * *s.tolerance)});
-    job.argv.insert(job.argv.end(), {"--draw", std::to_string(i)});
-    jobs.push_back(std::move(job));
-  }
-  return jobs;
-}
-
 void run_draw(const MonteCarloStudy& s, std::size_t index, const std::string& result_path) {
   if (index >= s.runs) throw Error(fmt::format("--draw {}: the study has draws 0 … {}", index, s.runs - 1));
   const Scene scene = load_scene(s.scene_path, s.machine);

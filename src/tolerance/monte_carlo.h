@@ -32,9 +32,6 @@ MonteCarloStudy study_from_json(const nlohmann::json& study);
 /// True if a run folder's study is a Monte Carlo (else a sweep's).
 bool is_monte_carlo(const nlohmann::json& study);
 
-/// One job per draw: `gearpatch monte-carlo SCENE ... --draw I`.
-std::vector<runs::Job> monte_carlo_jobs(const MonteCarloStudy& study);
-
 /// Runs draw `index` (verify at the hardware level with the drawn components)
 /// and writes its result JSON to `result_path`: the draw, each signal's
 /// error, pass or fail, every component's value.
