@@ -56,11 +56,13 @@ int run_monte_carlo(const std::vector<std::string>& args) {
   options.add_options()
       ("runs,n", po::value<std::size_t>()->default_value(100), "machines to draw (hardware runs)")
       ("seed", po::value<std::uint64_t>()->default_value(1), "the study's seed: the same seed, the same draws")
-      ("tolerance", po::value<std::string>(), "yield at this percentage of full scale (default: hardware's 2%)")
+      ("tolerance", po::value<std::string>(), "judge each draw at this percentage of full scale, as verify "
+       "--tolerance (default: hardware's 2%)")
       ("autoscale", "scale from the simulated peaks (as verify --autoscale)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit per run, s")
       ("jobs,j", po::value<unsigned>(), jobs_help.c_str())
-      ("plot", po::value<std::string>(), "histogram of each signal's worst error (.png or .svg)");
+      ("plot", po::value<std::string>(), "histogram of each signal's worst amplitude error over the draws, "
+       "the tolerance marked (.png or .svg)");
   add_run_folder_options(options, "draw");
   add_output_options(options, "the table", "the summary");
   add_machine_option(options);
@@ -69,8 +71,11 @@ int run_monte_carlo(const std::vector<std::string>& args) {
                        "Tolerance Monte Carlo: N hardware runs, each on a machine whose amplifier\n"
                        "offsets (random sign within the profile's spread) and potentiometer settings\n"
                        "(within the setting resolution) are drawn from the machine profile, seeded and\n"
-                       "reproducible. Per signal: the distribution of the worst error, the yield at the\n"
-                       "tolerance and the components that explain the spread. Exit status 0: done,\n"
+                       "reproducible. Each draw is judged as verify judges, against the reference at\n"
+                       "the tolerance (default 2%): the yield is the share of draws that pass every\n"
+                       "check, and the per-signal and per-check yields under it count the same draws.\n"
+                       "Per signal: the distribution of the worst error and the components that\n"
+                       "explain the spread. Exit status 0: done,\n"
                        "2: bad input, 3: a draw could not be run (named in the table).",
                        options,
                        {"gearpatch monte-carlo scenes/bild5b.ini --machine the-analog-thing --autoscale -n 100 "
