@@ -150,7 +150,7 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
   CHECK(std::abs(without_dominant - as_is) > std::abs(without_second - as_is));
   // The budget is a root-sum-square estimate of the spread, not a bound; the
   // profile's one deck lies below twice it. (How close it lies to the
-  // Monte Carlo's p90 is measured in bench, README's table: a single draw
+  // Monte Carlo's p90 is measured in docs/hardware-level.md: a single draw
   // can sit far below it, bild6c 16 % against 54 % when the offsets' shares
   // partly cancel.)
   CHECK(as_is <= 2 * b.predicted.at(b.worst_signal));

@@ -159,8 +159,8 @@ std::string to_table(const MonteCarloSummary& m) {
   t += "  (error: each draw's worst amplitude error, % of full scale; a signal's yield: draws whose signal stays in "
        "the tube; worst: every signal does)\n";
   for (const CheckYield& c : m.checks)
-    t += fmt::format("{:<11} {:>53.1f}  ({} of {} draws)\n", c.check, 100 * c.yield, c.passed, m.completed);
-  t += fmt::format("{:<11} {:>53.1f}  ({} of {} draws: the yield)\n", "every check", 100 * m.yield, m.passed,
+    t += fmt::format("{:<11} {:>44.1f}  ({} of {} draws)\n", c.check, 100 * c.yield, c.passed, m.completed);
+  t += fmt::format("{:<11} {:>44.1f}  ({} of {} draws: the yield)\n", "every check", 100 * m.yield, m.passed,
                    m.completed);
   for (const auto& [label, why] : m.failed) t += fmt::format("failed: {}: {}\n", label, why);
   return t;
