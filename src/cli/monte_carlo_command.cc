@@ -160,10 +160,12 @@ int run_monte_carlo(const std::vector<std::string>& args) {
   options.add_options()
       ("runs,n", po::value<std::string>(), runs_help.c_str())
       ("seed", po::value<std::string>(), "the study's seed, 0 … 999999999999 (default 1): the same seed, the same draws")
-      ("tolerance", po::value<std::string>(), "yield at this percentage of full scale (default: hardware's 2%)")
+      ("tolerance", po::value<std::string>(), "judge each draw at this percentage of full scale, as verify "
+       "--tolerance (default: hardware's 2%)")
       ("autoscale", "scale from the simulated peaks (as verify --autoscale)")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit per run, s, up to 86400")
-      ("plot", po::value<std::string>(), "histogram of each signal's worst error (.png or .svg)");
+      ("plot", po::value<std::string>(), "histogram of each signal's worst amplitude error over the draws, "
+       "the tolerance marked (.png or .svg)");
   add_run_folder_options(options, "draw");
   add_output_options(options, "the table", "the summary");
   add_machine_option(options);
@@ -172,8 +174,11 @@ int run_monte_carlo(const std::vector<std::string>& args) {
                        "Tolerance Monte Carlo: N hardware runs, each on a machine whose amplifier\n"
                        "offsets (random sign within the profile's spread) and potentiometer settings\n"
                        "(within the setting resolution) are drawn from the machine profile, seeded and\n"
-                       "reproducible. Per signal: the distribution of the worst error, the yield at the\n"
-                       "tolerance and the components that explain the spread. Exit status 0: done,\n"
+                       "reproducible. Each draw is judged as verify judges, against the reference at\n"
+                       "the tolerance (default 2%): the yield is the share of draws that pass every\n"
+                       "check, and the per-signal and per-check yields under it count the same draws.\n"
+                       "Per signal: the distribution of the worst error and the components that\n"
+                       "explain the spread. Exit status 0: done,\n"
                        "2: bad input, 3: a draw could not be run (named in the table).",
                        options,
                        {"gearpatch monte-carlo scenes/bild5b.ini --machine the-analog-thing --autoscale -n 100 "

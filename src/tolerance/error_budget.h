@@ -34,7 +34,10 @@ struct ErrorBudget {
   std::map<Signal, double> predicted;  ///< nominal + RSS of the shares' `moved`
   Signal worst_signal{};
   std::string dominant;                ///< the share that weighs most in worst_signal's RSS
-  std::vector<std::string> advice;     ///< what would shrink it
+  /// What would shrink a prediction beyond the tolerance, each change only when
+  /// it moves the prediction by at least a tenth of the excess; and whether the
+  /// perfect-components error alone exceeds the tolerance.
+  std::vector<std::string> advice;
   std::vector<std::string> failed;     ///< variants that could not run
 
   double worst() const { return predicted.at(worst_signal); }

@@ -75,14 +75,9 @@ std::string MeasuredCause::sentence() const {
 }
 
 std::vector<MeasuredCause> diagnose_by_measurement(const Scene& scene, const verify::VerifyOptions& options,
-                                                   const verify::VerifyResult& failed, unsigned workers) {
-  // The circuit as verify built it, for the list of changes.
-  circuit::Circuit shape;
-  verify::VerifyOptions probe = options;
-  also_alter(probe, [&](circuit::Circuit& c) { shape = c; });
-  auto simulator = spice::make_batch_ngspice();
-  (void)verify::verify(scene, probe, *simulator);
-  const std::vector<Variant> changes = variants(shape);
+                                                   const verify::VerifyResult& failed, const circuit::Circuit& built,
+                                                   unsigned workers) {
+  const std::vector<Variant> changes = variants(built);
   const std::vector<VariantRun> runs = run_variants(scene, options, changes, workers, "gearpatch verify: diagnosis");
   const double before = worst_error(failed);
   // A failure by impacts alone has no excess of amplitude: then a tenth of the error itself.

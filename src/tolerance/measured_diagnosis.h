@@ -2,6 +2,7 @@
 #include <string>
 #include <vector>
 
+#include "circuit/circuit.h"
 #include "tolerance/variants.h"
 
 namespace gearpatch::tolerance {
@@ -20,8 +21,10 @@ struct MeasuredCause {
 /// halved, the ideal friction characteristic, ideal switches, a tenth of the
 /// comparator hysteresis; at both levels a four times finer ngspice step —
 /// and names the changes that shrink the worst error by at least a tenth of
-/// its excess over the tolerance, largest improvement first.
+/// its excess over the tolerance, largest improvement first. `built` is the
+/// circuit the failed run was rendered from: the changes worth trying are read off it.
 std::vector<MeasuredCause> diagnose_by_measurement(const Scene& scene, const verify::VerifyOptions& options,
-                                                   const verify::VerifyResult& failed, unsigned workers);
+                                                   const verify::VerifyResult& failed, const circuit::Circuit& built,
+                                                   unsigned workers);
 
 }  // namespace gearpatch::tolerance

@@ -67,9 +67,10 @@ void run_draw(const MonteCarloStudy& s, std::size_t index, const std::string& re
     signals[to_string(e.signal)] = e.max_error;
     worst = std::max(worst, e.max_error);
   }
-  nlohmann::json result{{"draw", index},     {"seed", seed},          {"passed", r.passed},
-                        {"signals", signals}, {"worst", worst},        {"failures", r.failures},
-                        {"components", drawn.values()}};
+  nlohmann::json checks = nlohmann::json::object();
+  for (const verify::Check& c : r.checks) checks[c.name] = c.passed;
+  nlohmann::json result{{"draw", index},     {"seed", seed},   {"passed", r.passed},     {"checks", checks},
+                        {"signals", signals}, {"worst", worst}, {"failures", r.failures}, {"components", drawn.values()}};
   write_file_atomically(result_path, result.dump() + "\n", "--result");
 }
 

@@ -34,7 +34,7 @@ bool is_monte_carlo(const nlohmann::json& study);
 
 /// Runs draw `index` (verify at the hardware level with the drawn components)
 /// and writes its result JSON to `result_path`: the draw, each signal's
-/// error, pass or fail, every component's value.
+/// error, pass or fail and each check's, every component's value.
 void run_draw(const MonteCarloStudy& study, std::size_t index, const std::string& result_path);
 
 }  // namespace gearpatch::tolerance

@@ -51,7 +51,7 @@ std::vector<Explanation> explain(const std::map<std::string, std::vector<double>
   return all;
 }
 
-SignalSpread spread(const std::string& signal, std::vector<double> errors, double tolerance,
+SignalSpread spread(const std::string& signal, std::vector<double> errors, const std::vector<bool>& within,
                     const std::map<std::string, std::vector<double>>& components) {
   SignalSpread s;
   s.signal = signal;
@@ -61,11 +61,55 @@ SignalSpread spread(const std::string& signal, std::vector<double> errors, doubl
   for (double e : errors) {
     s.max = std::max(s.max, e);
     s.mean += e / static_cast<double>(errors.size());
-    if (e <= tolerance) s.yield += 1.0 / static_cast<double>(errors.size());
   }
+  s.within = static_cast<std::size_t>(std::count(within.begin(), within.end(), true));
+  if (!within.empty()) s.yield = static_cast<double>(s.within) / static_cast<double>(within.size());
   s.explained_by = explain(components, errors);
   s.errors = std::move(errors);
   return s;
+}
+
+/// Each check of one draw by name: verify's own judgement, or for a result
+/// written without it each signal's error against the tolerance.
+std::map<std::string, bool> draw_checks(const nlohmann::json& r, double tolerance) {
+  std::map<std::string, bool> checks;
+  if (r.contains("checks"))
+    for (const auto& [name, passed] : r.at("checks").items()) checks[name] = passed.get<bool>();
+  else
+    for (const auto& [signal, error] : r.at("signals").items()) checks[signal] = error.get<double>() <= tolerance;
+  return checks;
+}
+
+/// Per-check counts of the completed draws, signals apart from the other checks.
+struct Tally {
+  std::map<std::string, std::vector<double>> errors;  // signal → per completed draw
+  std::map<std::string, std::vector<bool>> within;    // check → per completed draw
+  std::vector<std::string> signals, others;           // in the order first seen
+  std::map<std::string, std::vector<double>> components;
+};
+
+void count_draw(const nlohmann::json& r, double tolerance, Tally& t, MonteCarloSummary& m) {
+  const std::map<std::string, bool> checks = draw_checks(r, tolerance);
+  bool every = r.at("passed").get<bool>(), signals = true;
+  for (const auto& [signal, error] : r.at("signals").items()) {
+    if (!t.errors.count(signal)) t.signals.push_back(signal);
+    t.errors[signal].push_back(error.get<double>());
+    const auto c = checks.find(signal);
+    const bool ok = c != checks.end() && c->second;
+    t.within[signal].push_back(ok);
+    signals = signals && ok;
+  }
+  for (const auto& [name, ok] : checks) {
+    every = every && ok;
+    if (t.errors.count(name)) continue;
+    if (!t.within.count(name)) t.others.push_back(name);
+    t.within[name].push_back(ok);
+  }
+  t.errors["worst"].push_back(r.at("worst").get<double>());
+  t.within["worst"].push_back(signals);
+  for (const auto& [name, value] : r.at("components").items()) t.components[name].push_back(value.get<double>());
+  m.draw_passed.push_back(every);
+  m.passed += every;
 }
 
 }  // namespace
@@ -73,47 +117,51 @@ SignalSpread spread(const std::string& signal, std::vector<double> errors, doubl
 MonteCarloSummary summarise(const MonteCarloStudy& study, const std::vector<runs::JobOutcome>& outcomes) {
   MonteCarloSummary m;
   m.study = study;
-  std::map<std::string, std::vector<double>> errors;  // signal → per completed draw
-  std::vector<std::string> order;
-  std::map<std::string, std::vector<double>> components;
-  std::size_t passed = 0;
+  Tally t;
   for (const runs::JobOutcome& o : outcomes) {
     if (!o.result) {
       m.failed.emplace_back(o.label, o.failure);
       continue;
     }
-    const nlohmann::json& r = *o.result;
     ++m.completed;
-    if (r.at("passed").get<bool>()) ++passed;
-    for (const auto& [signal, error] : r.at("signals").items()) {
-      if (!errors.count(signal)) order.push_back(signal);
-      errors[signal].push_back(error.get<double>());
-    }
-    errors["worst"].push_back(r.at("worst").get<double>());
-    for (const auto& [name, value] : r.at("components").items()) components[name].push_back(value.get<double>());
+    count_draw(*o.result, study.judged_tolerance(), t, m);
   }
-  order.push_back("worst");
-  if (m.completed > 0) m.yield = static_cast<double>(passed) / static_cast<double>(m.completed);
-  for (const std::string& signal : order)
-    m.signals.push_back(spread(signal, errors[signal], study.judged_tolerance(), components));
+  t.signals.push_back("worst");
+  if (m.completed > 0) m.yield = static_cast<double>(m.passed) / static_cast<double>(m.completed);
+  for (const std::string& signal : t.signals)
+    m.signals.push_back(spread(signal, t.errors[signal], t.within[signal], t.components));
+  std::sort(t.others.begin(), t.others.end());
+  for (const std::string& name : t.others) {
+    const auto& within = t.within[name];
+    CheckYield c{name, static_cast<std::size_t>(std::count(within.begin(), within.end(), true)), 0};
+    if (!within.empty()) c.yield = static_cast<double>(c.passed) / static_cast<double>(within.size());
+    m.checks.push_back(c);
+  }
   return m;
 }
 
 std::string to_table(const MonteCarloSummary& m) {
-  std::string t = fmt::format("Monte Carlo: {} draws of {} on {} (seed {}), {} completed, {} failed; "
-                              "yield {:.1f} % at the tolerance of {:g} %\n",
-                              m.study.runs, m.study.scene_path, m.study.machine.empty() ? "the scene's machine" : m.study.machine,
-                              m.study.seed, m.completed, m.failed.size(), 100 * m.yield,
-                              100 * m.study.judged_tolerance());
-  t += fmt::format("{:<8} {:>8} {:>8} {:>8} {:>8} {:>8}  {}\n", "signal", "p10 %", "p50 %", "p90 %", "max %",
+  std::string t = fmt::format("Monte Carlo: {} draws of {} on {} (seed {}), {} completed, {} failed\n", m.study.runs,
+                              m.study.scene_path, m.study.machine.empty() ? "the scene's machine" : m.study.machine,
+                              m.study.seed, m.completed, m.failed.size());
+  t += fmt::format("yield {:.1f} % ({} of {} completed draws pass every check verify makes at the tolerance of "
+                   "{:g} %: each signal's tube, impacts, peaks, restitution, overloads)\n",
+                   100 * m.yield, m.passed, m.completed, 100 * m.study.judged_tolerance());
+  t += fmt::format("{:<11} {:>8} {:>8} {:>8} {:>8} {:>8}  {}\n", "signal", "p10 %", "p50 %", "p90 %", "max %",
                    "yield %", "spread explained by (r²)");
   for (const SignalSpread& s : m.signals) {
     std::string why;
     for (const Explanation& e : s.explained_by)
       why += fmt::format("{}{} {:.2f}", why.empty() ? "" : ", ", e.component, e.r_squared);
-    t += fmt::format("{:<8} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.1f}  {}\n", s.signal, 100 * s.p10,
+    t += fmt::format("{:<11} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.3f} {:>8.1f}  {}\n", s.signal, 100 * s.p10,
                      100 * s.p50, 100 * s.p90, 100 * s.max, 100 * s.yield, why);
   }
+  t += "  (error: each draw's worst amplitude error, % of full scale; a signal's yield: draws whose signal stays in "
+       "the tube; worst: every signal does)\n";
+  for (const CheckYield& c : m.checks)
+    t += fmt::format("{:<11} {:>44.1f}  ({} of {} draws)\n", c.check, 100 * c.yield, c.passed, m.completed);
+  t += fmt::format("{:<11} {:>44.1f}  ({} of {} draws: the yield)\n", "every check", 100 * m.yield, m.passed,
+                   m.completed);
   for (const auto& [label, why] : m.failed) t += fmt::format("failed: {}: {}\n", label, why);
   return t;
 }
@@ -125,12 +173,17 @@ nlohmann::json to_json(const MonteCarloSummary& m) {
     for (const Explanation& e : s.explained_by)
       explained.push_back({{"component", e.component}, {"r_squared", e.r_squared}, {"slope", e.slope}});
     signals.push_back({{"signal", s.signal}, {"p10", s.p10}, {"p50", s.p50}, {"p90", s.p90}, {"max", s.max},
-                       {"mean", s.mean}, {"yield", s.yield}, {"errors", s.errors}, {"explained_by", explained}});
+                       {"mean", s.mean}, {"yield", s.yield}, {"within", s.within}, {"errors", s.errors},
+                       {"explained_by", explained}});
   }
+  nlohmann::json checks = nlohmann::json::array();
+  for (const CheckYield& c : m.checks) checks.push_back({{"check", c.check}, {"passed", c.passed}, {"yield", c.yield}});
   nlohmann::json failed = nlohmann::json::array();
   for (const auto& [label, why] : m.failed) failed.push_back({{"draw", label}, {"reason", why}});
-  return {{"study", to_json(m.study)}, {"completed", m.completed}, {"yield", m.yield},
-          {"tolerance", m.study.judged_tolerance()}, {"signals", signals}, {"failed", failed}};
+  return {{"study", to_json(m.study)}, {"completed", m.completed}, {"passed", m.passed},
+          {"yield", m.yield},          {"tolerance", m.study.judged_tolerance()},
+          {"signals", signals},        {"checks", checks},
+          {"draw_passed", m.draw_passed}, {"failed", failed}};
 }
 
 std::string histogram_image(const MonteCarloSummary& m, const std::string& format) {
@@ -139,14 +192,17 @@ std::string histogram_image(const MonteCarloSummary& m, const std::string& forma
   const int bins = 20;
   const double width = top * 1.05 / bins;
   std::string script = fmt::format(
-      "set title {} noenhanced\nset xlabel 'worst error, % of full scale'\nset ylabel 'draws'\n"
-      "set style fill transparent solid 0.35\nset xrange [0:*]\nset boxwidth {:g}\nset key top right\n",
-      gnuplot_string(fmt::format("Monte Carlo: {} draws of {} (seed {}), yield {:.0f} %", m.completed,
-                                 m.study.scene_path.substr(m.study.scene_path.find_last_of('/') + 1),
-                                 m.study.seed, 100 * m.yield)),
-      width);
+      "set title {} noenhanced\nset xlabel 'a draw''s worst amplitude error, % of full scale'\nset ylabel 'draws'\n"
+      "set style fill transparent solid 0.35\nset xrange [0:*]\nset boxwidth {:g}\nset key top right\n"
+      "set label {} at graph 0.02, graph 0.95 left\n",
+      gnuplot_string(fmt::format("{}: each signal's worst amplitude error in {} draws (seed {})",
+                                 m.study.scene_path.substr(m.study.scene_path.find_last_of('/') + 1), m.completed,
+                                 m.study.seed)),
+      width,
+      gnuplot_string(fmt::format("yield {:.0f} %: {} of {} draws pass every check (signals, impacts, peaks, "
+                                 "restitution, overloads)", 100 * m.yield, m.passed, m.completed)));
   script += fmt::format("set arrow from {0:g}, graph 0 to {0:g}, graph 1 nohead dt 2 lw 2 lc rgb 'red'\n"
-                        "set label 'tolerance' at {0:g}, graph 0.95 right offset -0.5,0 tc rgb 'red'\n", top == 0 ? 0 : 100 * m.study.judged_tolerance());
+                        "set label 'tolerance {0:g} %' at {0:g}, graph 0.95 right offset -0.5,0 tc rgb 'red'\n", top == 0 ? 0 : 100 * m.study.judged_tolerance());
   std::string plots;
   for (std::size_t k = 0; k < m.signals.size(); ++k) {
     const SignalSpread& s = m.signals[k];
@@ -157,7 +213,8 @@ std::string histogram_image(const MonteCarloSummary& m, const std::string& forma
     for (int b = 0; b < bins; ++b) script += fmt::format("{:g} {}\n", (b + 0.5) * width, count[b]);
     script += "EOD\n";
     plots += fmt::format("{}$s{} using 1:2 with boxes title {} noenhanced", plots.empty() ? "plot " : ", ", k,
-                         gnuplot_string(fmt::format("{} (p90 {:.2f} %)", s.signal, 100 * s.p90)));
+                         gnuplot_string(fmt::format("{}: p90 {:.2f} %, in the tube in {} of {} draws", s.signal,
+                                                    100 * s.p90, s.within, s.errors.size())));
   }
   return draw_with_gnuplot(format, 900, 560, script + plots + "\n");
 }

@@ -23,17 +23,34 @@ struct SignalSpread {
   std::string signal;  ///< "omega_p", or "worst" for the worst over signals
   std::vector<double> errors;  ///< per completed draw, in draw order
   double p10 = 0, p50 = 0, p90 = 0, max = 0, mean = 0;
-  double yield = 0;  ///< fraction of completed draws within the tolerance
+  /// Fraction of completed draws whose signal stayed in verify's tube
+  /// ("worst": every signal did).
+  double yield = 0;
+  std::size_t within = 0;  ///< those draws, counted
   std::vector<Explanation> explained_by;  ///< the strongest three, strongest first
 };
 
-/// What a Monte Carlo gives: per signal the spread, the yield, the
-/// components behind it, and every failed draw by name.
+/// One of verify's checks other than a signal's tube ("impacts", "peaks",
+/// "restitution", "overloads") and how many completed draws passed it.
+struct CheckYield {
+  std::string check;
+  std::size_t passed = 0;
+  double yield = 0;
+};
+
+/// What a Monte Carlo gives: the yield (draws that pass every check verify
+/// makes, at the study's tolerance), per signal the spread, its yield and
+/// the components behind it, per other check its yield, and every failed
+/// draw by name. A draw counts towards the yield only if it counts towards
+/// every per-signal and per-check yield, so none can lie below it.
 struct MonteCarloSummary {
   MonteCarloStudy study;
   std::size_t completed = 0;
-  double yield = 0;  ///< fraction of completed draws that passed verify
+  std::size_t passed = 0;  ///< completed draws that passed every check
+  double yield = 0;  ///< passed / completed
   std::vector<SignalSpread> signals;  ///< each compared signal, then "worst"
+  std::vector<CheckYield> checks;     ///< impacts, peaks, restitution, overloads
+  std::vector<bool> draw_passed;      ///< per completed draw, in draw order
   std::vector<std::pair<std::string, std::string>> failed;  ///< draw label, why
 };
 
@@ -44,8 +61,9 @@ double quantile(std::vector<double> values, double q);
 
 std::string to_table(const MonteCarloSummary& summary);
 nlohmann::json to_json(const MonteCarloSummary& summary);
-/// A histogram of each signal's worst error with the tolerance and each
-/// p90 marked, drawn with gnuplot (png or svg).
+/// A histogram of each signal's worst amplitude error over the draws, the
+/// tolerance marked, each signal's p90 and yield in its key, the yield in the
+/// title; drawn with gnuplot (png or svg).
 std::string histogram_image(const MonteCarloSummary& summary, const std::string& format);
 
 }  // namespace gearpatch::tolerance

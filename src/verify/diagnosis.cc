@@ -37,12 +37,6 @@ std::vector<std::string> diagnose(const VerifyResult& r, const Patch& patch) {
   std::vector<std::string> out;
   overloads(r, out);
   small_settings(patch, out);
-  if (out.empty())
-    out.push_back(r.level == circuit::Level::hardware
-                      ? std::string("no rule applies: `gearpatch verify` measures the causes on changed "
-                                    "copies of the deck (offsets, δ, friction characteristic, switches, step)")
-                      : "the ideal circuit disagrees without a known cause: check the deck "
-                        "(--keep-deck) and the ngspice tolerances (--quality precise)");
   return out;
 }
 

@@ -41,9 +41,15 @@ std::string impact_rows(const VerifyResult& r) {
 
 }  // namespace
 
-std::string to_table(const VerifyResult& r) {
-  std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {:.6g}\n\n",
-                              r.scene, level_name(r.level), 100 * r.tolerance, r.beta);
+std::string measurement_table(const VerifyResult& r) {
+  // A tolerance other than the level's default is the user's choice: said where the verdict is read.
+  const double usual = default_tolerance(r.level);
+  const std::string given = r.tolerance_given && r.tolerance != usual
+                                ? fmt::format(" (--tolerance; the {} level's default is {:g} %)", level_name(r.level),
+                                              100 * usual)
+                                : "";
+  std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale{}, beta {:.6g}\n\n", r.scene,
+                              level_name(r.level), 100 * r.tolerance, given, r.beta);
   if (r.deck_scaling != "generated")
     t += fmt::format("deck: {}; read back as level {}, {} scaling\n\n",
                      r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
@@ -78,21 +84,30 @@ std::string to_table(const VerifyResult& r) {
   if (r.retry)
     t += fmt::format("ngspice retry: the first run aborted ({}); ran once more with {}\n", r.retry->first_failure,
                      r.retry->change);
-  t += "\n";
-  if (r.passed) return t + "PASS\n";
-  t += "FAIL\n";
+  return t + "\n";
+}
+
+std::string verdict_lines(const VerifyResult& r) {
+  if (r.passed) return "PASS\n";
+  std::string t = "FAIL\n";
   for (const auto& f : r.failures) t += "  - " + f + "\n";
   if (!r.diagnosis.empty()) t += "likely causes:\n";
   for (const auto& d : r.diagnosis) t += "  - " + d + "\n";
   return t;
 }
 
-std::string to_json(const VerifyResult& r) {
+std::string to_table(const VerifyResult& r) { return measurement_table(r) + verdict_lines(r); }
+
+nlohmann::json json_of(const VerifyResult& r) {
   nlohmann::json j;
   j["scene"] = r.scene;
   j["level"] = std::string(level_name(r.level));
+  j["verdict"] = r.passed ? "pass" : "fail";
   j["tolerance"] = r.tolerance;
+  j["tolerance_given"] = r.tolerance_given;
   j["passed"] = r.passed;
+  j["checks"] = nlohmann::json::object();
+  for (const Check& c : r.checks) j["checks"][c.name] = c.passed;
   j["beta"] = r.beta;
   j["deck_scaling"] = r.deck_scaling;  // generated, header or options
   j["scaling"] = r.scaling;
@@ -121,8 +136,12 @@ std::string to_json(const VerifyResult& r) {
   j["failures"] = r.failures;
   j["diagnosis"] = r.diagnosis;
   j["warnings"] = r.warnings;
+  return j;
+}
+
+std::string to_json(const VerifyResult& r) {
   // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
-  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  return json_of(r).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace gearpatch::verify

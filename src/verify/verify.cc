@@ -37,48 +37,67 @@ void check_deck_header(const spice::DeckHeader& h, const circuit::Circuit& c) {
 }
 
 void judge_signals(VerifyResult& r) {
-  for (const SignalError& e : r.comparison.signals)
+  for (const SignalError& e : r.comparison.signals) {
+    r.checks.push_back({to_string(e.signal), e.outside == 0});
     if (e.outside > 0)
       r.failures.push_back(fmt::format(
           "{}: leaves the tube at t = {:.6g} s by {:.3g} % of full scale after the best shift within "
           "+-{:.4g} s (reference {:.6g}, circuit {:.6g}; {} points outside)",
           to_string(e.signal), e.time_of_max, 100 * e.max_error, r.comparison.time_tolerance,
           e.reference_at_max, e.circuit_at_max, e.outside));
+  }
+}
+
+/// Whether `failures` grew while `judge` ran: the check it judges.
+template <class Judge>
+void check(VerifyResult& r, const char* name, Judge judge) {
+  const std::size_t before = r.failures.size();
+  judge();
+  r.checks.push_back({name, r.failures.size() == before});
 }
 
 void judge_impacts(VerifyResult& r) {
   const auto& c = r.comparison;
-  for (const Impact& i : c.impacts.impacts) {
-    if (!i.counts()) continue;
-    if (i.circuit < 0)
-      r.failures.push_back(fmt::format("the impact at t = {:.6g} s is missing in the circuit", i.reference));
-    else if (i.reference < 0)
-      r.failures.push_back(fmt::format("the circuit has an impact at t = {:.6g} s ({:.3g} rad deep) that "
-                                       "the reference lacks", i.circuit, i.depth));
-    if (!i.matched()) continue;
-    if (i.released && i.peak_error > r.tolerance)
-      r.failures.push_back(fmt::format("the impact at t = {:.6g} s peaks at {:.6g} N·m, the reference at "
-                                       "{:.6g} N·m ({:.3g} % of full scale)",
-                                       i.reference, i.peak_circuit, i.peak_reference, 100 * i.peak_error));
-    if (i.restitution_circuit >= 0 && i.restitution_reference >= 0 &&
-        std::abs(i.restitution_circuit - i.restitution_reference) > r.tolerance)
-      r.failures.push_back(fmt::format("the impact at t = {:.6g} s rebounds with restitution {:.4f}, the "
-                                       "reference with {:.4f}", i.reference, i.restitution_circuit,
-                                       i.restitution_reference));
-  }
-  // A crossing is interpolated between circuit points: a shift of exactly the
-  // tolerance reads a hair either side of it.
-  if (c.worst_impact_shift > r.tolerance * (1 + 1e-3) && c.impacts.missing() == 0)
-    r.failures.push_back(fmt::format("impact times differ by up to {:.3g} % of the run",
-                                     100 * c.worst_impact_shift));
+  check(r, "impacts", [&] {
+    for (const Impact& i : c.impacts.impacts) {
+      if (!i.counts()) continue;
+      if (i.circuit < 0)
+        r.failures.push_back(fmt::format("the impact at t = {:.6g} s is missing in the circuit", i.reference));
+      else if (i.reference < 0)
+        r.failures.push_back(fmt::format("the circuit has an impact at t = {:.6g} s ({:.3g} rad deep) that "
+                                         "the reference lacks", i.circuit, i.depth));
+    }
+    // A crossing is interpolated between circuit points: a shift of exactly the
+    // tolerance reads a hair either side of it.
+    if (c.worst_impact_shift > r.tolerance * (1 + 1e-3) && c.impacts.missing() == 0)
+      r.failures.push_back(fmt::format("impact times differ by up to {:.3g} % of the run",
+                                       100 * c.worst_impact_shift));
+  });
+  check(r, "peaks", [&] {
+    for (const Impact& i : c.impacts.impacts)
+      if (i.counts() && i.matched() && i.released && i.peak_error > r.tolerance)
+        r.failures.push_back(fmt::format("the impact at t = {:.6g} s peaks at {:.6g} N·m, the reference at "
+                                         "{:.6g} N·m ({:.3g} % of full scale)",
+                                         i.reference, i.peak_circuit, i.peak_reference, 100 * i.peak_error));
+  });
+  check(r, "restitution", [&] {
+    for (const Impact& i : c.impacts.impacts)
+      if (i.counts() && i.matched() && i.restitution_circuit >= 0 && i.restitution_reference >= 0 &&
+          std::abs(i.restitution_circuit - i.restitution_reference) > r.tolerance)
+        r.failures.push_back(fmt::format("the impact at t = {:.6g} s rebounds with restitution {:.4f}, the "
+                                         "reference with {:.4f}", i.reference, i.restitution_circuit,
+                                         i.restitution_reference));
+  });
 }
 
 void judge(VerifyResult& r) {
   judge_signals(r);
   judge_impacts(r);
-  for (const Overload& o : r.overloads)
-    r.failures.push_back(fmt::format("overload: amplifier output {} reaches {:.4g} MU at t = {:.6g} s",
-                                     o.node, o.value, o.t));
+  check(r, "overloads", [&] {
+    for (const Overload& o : r.overloads)
+      r.failures.push_back(fmt::format("overload: amplifier output {} reaches {:.4g} MU at t = {:.6g} s",
+                                       o.node, o.value, o.t));
+  });
   r.passed = r.failures.empty();
 }
 
@@ -97,6 +116,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.level = options.level;
   r.duration = scene.duration;
   r.tolerance = options.tolerance.value_or(default_tolerance(options.level));
+  r.tolerance_given = options.tolerance.has_value();
   // One run of the reference model serves the patch's peak check (its own
   // fine grid) and the comparison (the deck's output grid).
   const ScalingInput input = scaling_input(scene);

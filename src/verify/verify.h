@@ -39,14 +39,27 @@ struct VerifyOptions {
 /// The default pass/fail tolerance of a level, as a fraction of full scale.
 double default_tolerance(circuit::Level level);
 
+/// One of the checks a verdict is made of, and whether it held: each
+/// signal's tube (named by the signal), "impacts" (every impact there and on
+/// time), "peaks", "restitution", "overloads". The verdict is a pass when
+/// every check holds; a Monte Carlo counts each check's yield from these.
+struct Check {
+  std::string name;
+  bool passed = true;
+};
+
 /// The verdict and every number behind it.
 struct VerifyResult {
   std::string scene;
   circuit::Level level = circuit::Level::ideal;
   double tolerance = 0;
+  bool tolerance_given = false;  ///< the user's --tolerance, not the level's default
   bool passed = false;
+  std::vector<Check> checks;           ///< every check judged, in the report's order
   std::vector<std::string> failures;   ///< one sentence per reason, empty when passed
-  std::vector<std::string> diagnosis;  ///< likely causes, for a failure
+  /// Causes of a failure read off the run itself (overloads, small settings);
+  /// the ones measured on changed copies are added by tolerance/verdict.h.
+  std::vector<std::string> diagnosis;
   std::vector<std::string> warnings;   ///< the patch's: overloads, hard-to-set coefficients
   Comparison comparison;
   std::vector<Overload> overloads;
