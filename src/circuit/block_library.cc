@@ -83,7 +83,7 @@ const std::vector<BlockInfo>& infos() {
       {BlockKind::dead_zone, "dead_zone", "gp_dead_zone", {"in", "out"}, "threshold"},
       {BlockKind::limiter, "limiter", "gp_limiter", {"in", "out"}, "band"},
       {BlockKind::abs, "abs", "gp_abs", {"in", "out"}, ""},
-      {BlockKind::halfwave, "halfwave", "gp_halfwave", {"in", "pos", "neg"}, ""},
+      {BlockKind::halfwave, "halfwave", "gp_halfwave", {"in", "pos", "neg"}, "gain"},
       {BlockKind::comparator, "comparator", "gp_comparator", {"in", "ctrl"}, "offset"},
       {BlockKind::analog_switch, "switch", "gp_switch", {"in", "out", "ctrl"}, ""},
       {BlockKind::latch, "latch", "gp_latch", {"in", "out", "set", "reset"}, ""},
@@ -364,5 +364,12 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
 }
 
 double hardware_opamp_offset_volts() { return HardwareFigures::opamp_vos; }
+
+double halfwave_gain(Level level, const MachineProfile& m) {
+  if (level == Level::ideal) return 1;
+  // A diode drop (0.5 V at the rectifier's 0.1 mA and its load) plus margin.
+  const double swing = m.supply_volts - HardwareFigures::opamp_headroom;
+  return swing - m.unit_volts >= 1.0 ? 1 : 0.5;
+}
 
 }  // namespace gearpatch::circuit

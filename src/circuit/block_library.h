@@ -51,6 +51,14 @@ std::string to_string(BlockKind block);
 /// it makes every hardware integrator drift, which `verify` uses to diagnose.
 double hardware_opamp_offset_volts();
 
+/// The gain of a half-wave rectifier that must pass a full 1 MU: 1 where its
+/// op-amp swings to 1 MU plus a diode drop with a volt to spare, else 1/2.
+/// A saturated rectifier holds its idle output at a few mV, which the lock's
+/// weight-10 input turns into a drift of the secondary (measured on THE
+/// ANALOG THING, ±10.5 V swing, bild6c with perfect components: φ̇s 9.8 % of
+/// full scale at gain 1, 0.10 % at gain 1/2).
+double halfwave_gain(Level level, const MachineProfile& machine);
+
 /// Shared lines every deck of that level needs once, before any block:
 /// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
 std::string render_models(Level level, const MachineProfile& machine);

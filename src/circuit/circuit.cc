@@ -304,16 +304,23 @@ class Builder {
     return level_ == Level::hardware && patch_.dead_zone && gain && gain->stages == 0;
   }
 
-  /// The comparators' threshold δ. On X: a plus twice the Schmitt trigger's
-  /// hysteresis h, so that it trips at a + 3h and releases at a + h, just
-  /// before the flanks part: released after them, an offset leaves d·Δφ̇ on in
-  /// free flight, where Δφ̇ is largest. Measured on the-analog-thing, bild5b,
-  /// dphi: centred at a 7.9 %, at a + h 4.3 %, at a + 2h 0.89 % (with
-  /// --autoscale 7.7 % → 3.7 %, and with gp_amp_xp's offset of the other
-  /// sign m0 11.2 % → 2.7 %); on classic a + 2h and a + h are alike (bild5b
-  /// 0.18 %, bild5c 0.28 %), a + 20h cost 3.9 % on bild5b. On X': the patch's δ.
+  /// The comparators' threshold δ. On X: a plus the Schmitt trigger's
+  /// hysteresis h plus the dead zone's breakpoint error (2 mV, templates/
+  /// README.md), so that it releases at a + 2 mV, as the flanks part and
+  /// never after (released after them, d·Δφ̇ acts in free flight), and trips
+  /// at a + 2h + 2 mV: each h of X it misses is damping left out where Δφ̇ is
+  /// largest, which on a machine of wide hysteresis matters as the impacts
+  /// weaken. Measured, worst signal: THE ANALOG THING at SLOW with perfect
+  /// components, δ = a + 2h, a + h, a + h/2, this: bild5b 3.6 %, 0.45 %,
+  /// 0.26 %, 0.47 %; bild5c 9.2 %, 0.60 %, 0.29 %, 1.4 %; with the profile's
+  /// offsets bild5b 2.1 %, 0.98 %, 0.83 %, 1.0 %, bild5c 0.83 %, 0.61 %,
+  /// 0.63 %, 0.62 %; classic (h = 1e-4 MU), random-52817-021 and -030,
+  /// δ = a + h/2, a + h, a + 2h, a + 3h (this): an impact lost / 4.9 %,
+  /// 2.5 % of the run late / 4.9 %, 2.2 % late / 3.1 %, pass / pass (1.9 %
+  /// late / 1.2 %). On X': the patch's δ.
   double contact_threshold(double patch_delta) const {
-    return on_x() ? *patch_.dead_zone + 2 * c_.machine.comparator_hysteresis : patch_delta;
+    const double h = c_.machine.comparator_hysteresis, corner = 2e-3 / c_.machine.unit_volts;
+    return on_x() ? *patch_.dead_zone + h + corner : patch_delta;
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
@@ -350,8 +357,16 @@ class Builder {
     const double band = lock_band(level_, patch_.machine.amplifier.bandwidth_hz, lock_rate);
     block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(band),
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
-    block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"}, "",
-          "lock_below = min(clip, 0), lock_above = max(clip, 0)");
+    // The band stays the one for the full reaction: a halved rectifier halves
+    // the loop gain, which the measured decks prefer (bild6c on THE ANALOG
+    // THING, perfect components: band 0.023 0.28 %, band 0.012 at the same
+    // loop gain as gain 1 9.4 %).
+    const double gain = halfwave_gain(level_, c_.machine);
+    block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"},
+          gain == 1 ? "" : fmt::format("{}", gain),
+          gain == 1 ? "lock_below = min(clip, 0), lock_above = max(clip, 0)"
+                    : fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): the rectifier's "
+                                  "op-amp cannot swing to 1 MU plus a diode drop", gain));
     contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
     if (patch_.dead_zone) return;  // the latch is for zero backlash only (add_secondary)
     const std::string release = fmt::format("{}", lock_release(level_));
