@@ -175,6 +175,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
     circuit::TransientControl half = control;  // as the run that gave r.circuit, the retry's method if it ran
     if (r.retry) half.method = "gear", half.chgtol = 1e-14;
     half.max_step_points *= 2;
+    half.max_step_seconds /= 2;  // the scene's bound, where it is the tighter one
     const spice::Vectors finer = simulator.run(circuit::render_netlist(circuit, half), options.limits);
     r.step_halving_change =
         trace_change(r.circuit, unscale(finer, circuit, scene.machine.unit_volts), settings.full_scales,
