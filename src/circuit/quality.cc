@@ -58,7 +58,7 @@ std::string describe(const TransientControl& c) {
                      format_number(c.reltol), c.method);
 }
 
-double steps_per_contact_period() { return 40; }
+double steps_per_contact_period() { return 10; }
 
 TransientControl scene_control(const TransientControl& preset, const GearParameters& gear, double duration) {
   TransientControl c = preset;
