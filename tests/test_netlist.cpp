@@ -8,6 +8,7 @@
 
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
+#include "circuit/quality.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "scaling/patch.h"
@@ -29,7 +30,8 @@ Generated generate(const Scene& scene, Level level) {
   options.check_peaks = false;
   options.comparator_offset = comparator_offset(level);
   Circuit c = build_circuit(make_patch(scene, options), level);
-  std::string deck = render_netlist(c);
+  // The step the scene's contact period needs, as the netlist command and verify take it.
+  std::string deck = render_netlist(c, scene_control({}, gear_parameters(scene), scene.duration));
   return {std::move(c), std::move(deck)};
 }
 

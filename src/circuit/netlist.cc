@@ -1,5 +1,6 @@
 #include "circuit/netlist.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <map>
@@ -149,6 +150,8 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
   if (!(std::isfinite(stop) && stop > 0))
     throw Error(fmt::format("the deck would run the transient to {} s (β = {})", stop, c.beta),
                 Error::Kind::internal);
+  double tmax = stop / t.max_step_points;
+  if (t.max_step_seconds > 0) tmax = std::min(tmax, c.beta * t.max_step_seconds);
   std::string text = "\n* Initial conditions (integrators in IC mode), machine units x unit volts\n";
   for (const auto& [node, param] : c.initial_conditions)
     text += fmt::format(".ic v({})={{{}*{}}}\n", node, param ? to_string(*param) : "0",
@@ -159,7 +162,7 @@ std::string analysis(const Circuit& c, const MachineProfile& m, const TransientC
       ".options method={} reltol={} abstol=1e-12 vntol=1e-9 chgtol={} itl4=100\n"
       ".tran {} {} 0 {}\n.end\n",
       format_number(c.duration), format_number(c.beta), t.method, format_number(t.reltol), format_number(t.chgtol),
-      format_number(stop / t.output_points), format_number(stop), format_number(stop / t.max_step_points));
+      format_number(stop / t.output_points), format_number(stop), format_number(tmax));
   return text;
 }
 

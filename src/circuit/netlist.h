@@ -17,6 +17,9 @@ struct TransientControl {
   /// ngspice's charge tolerance, C: tight for the 1 nF integrators of fast
   /// machines (the ngspice notes); the retry takes ngspice's default 1e-14.
   double chgtol = 1e-16;
+  /// s of real time: a tighter bound on tmax from the scene's own time
+  /// scales (circuit::scene_control); 0: none. Not part of the preset.
+  double max_step_seconds = 0;
 
   bool operator==(const TransientControl&) const = default;
 };

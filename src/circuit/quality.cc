@@ -1,6 +1,8 @@
 #include "circuit/quality.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <fmt/format.h>
 
 #include "common/error.h"
@@ -35,7 +37,7 @@ const QualityPreset& quality_preset(std::string_view name) {
 
 std::string quality_name(const TransientControl& control) {
   for (const QualityPreset& p : quality_presets())
-    if (p.control == control) return p.name;
+    if (same_control(p.control, control)) return p.name;  // a scene's tighter step keeps the preset's name
   return "custom";
 }
 
@@ -51,8 +53,21 @@ bool same_control(const TransientControl& a, const TransientControl& b) {
 }
 
 std::string describe(const TransientControl& c) {
-  return fmt::format("out={} tmax=T/{} reltol={} {}", c.output_points, format_number(c.max_step_points),
+  const std::string contact = c.max_step_seconds > 0 ? fmt::format(" (and <= {:.3g} s real)", c.max_step_seconds) : "";
+  return fmt::format("out={} tmax=T/{}{} reltol={} {}", c.output_points, format_number(c.max_step_points), contact,
                      format_number(c.reltol), c.method);
+}
+
+double steps_per_contact_period() { return 10; }
+
+TransientControl scene_control(const TransientControl& preset, const GearParameters& gear, double duration) {
+  TransientControl c = preset;
+  const double reduced = gear.inertia_primary * gear.inertia_secondary / (gear.inertia_primary + gear.inertia_secondary);
+  if (!(gear.stiffness > 0) || !(reduced > 0)) return c;
+  const double period = std::numbers::pi * std::sqrt(reduced / gear.stiffness);
+  const double step = period / steps_per_contact_period();
+  if (step < duration / c.max_step_points) c.max_step_seconds = step;
+  return c;
 }
 
 namespace {

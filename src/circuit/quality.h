@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "circuit/netlist.h"
+#include "model/gear_model.h"
 
 namespace gearpatch::circuit {
 
@@ -46,6 +47,18 @@ std::string quality_markdown();
 
 /// True if two transient settings are the same.
 bool same_control(const TransientControl& a, const TransientControl& b);
+
+/// The largest steps per contact period that scene_control allows.
+double steps_per_contact_period();
+
+/// The preset's settings with the largest ngspice step made no longer than
+/// the scene's contact period π·sqrt(Θ/c) over steps_per_contact_period()
+/// (Θ = ΘpΘs/(Θp+Θs)), and never coarser than the preset's: a run many
+/// contact periods long gets the step its contacts need, which a fixed
+/// fraction of the run does not give (`verify --check-step` measures what
+/// halving it moves). The drive's switching instants are breakpoints of its
+/// PWL source, where ngspice steps anyway.
+TransientControl scene_control(const TransientControl& preset, const GearParameters& gear, double duration);
 
 /// "out=2000 tmax=T/4000 reltol=1e-07 gear": the settings in a few words.
 std::string describe(const TransientControl& control);

@@ -3,6 +3,7 @@
 
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
+#include "circuit/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
 #include "common/output_set.h"
@@ -49,7 +50,9 @@ int run_netlist(const std::vector<std::string>& args) {
   patch_options.lock_catch = level == circuit::Level::ideal;
   const circuit::Circuit c = with_scene(
       scene, [&] { return circuit::build_circuit(make_patch(scene, patch_options), level); });
-  const circuit::TransientControl control = chosen_quality(vm);
+  // The step the scene's contact period needs, as verify takes it.
+  const circuit::TransientControl control =
+      circuit::scene_control(chosen_quality(vm), gear_parameters(scene), scene.duration);
   const std::string deck = circuit::render_netlist(c, control);
   outputs.stage("--out", deck);
   outputs.commit();

@@ -87,6 +87,8 @@ int run_verify(const std::vector<std::string>& args) {
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
        "a plot that cannot be made is a warning, the verdict stands")
       ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s (at least 0.001; inf: none)")
+      ("check-step", "run the generated deck once more at half the largest ngspice step and report how far "
+       "that moves the circuit's signals (the step is chosen so that this stays below a tenth of the tolerance)")
       ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE (written before the "
        "run and kept whatever its outcome, to rerun it by hand)");
   add_output_options(options, "the report", "the report");
@@ -115,6 +117,7 @@ int run_verify(const std::vector<std::string>& args) {
   o.autoscale = vm.count("autoscale") > 0;
   o.paper_scaling = paper_scaling(vm);
   o.transient = chosen_quality(vm);
+  o.check_step = vm.count("check-step") > 0;
   if (vm.count("deck")) {
     const std::string path = vm["deck"].as<std::string>();
     o.deck_text = read_file(path);

@@ -90,6 +90,20 @@ const std::map<std::string, std::string>& scene_keys() {
   return keys;
 }
 
+Quantity key_quantity(const std::string& key) {
+  static const std::map<std::string, Quantity> stated = {
+      {"gear.backlash", Quantity::angle},           {"initial.twist", Quantity::angle},
+      {"load.backlash", Quantity::angle},           {"maxima.contact_twist", Quantity::angle},
+      {"maxima.twist", Quantity::angle},            {"initial.speed_primary", Quantity::speed},
+      {"initial.speed_secondary", Quantity::speed}, {"load.speed", Quantity::speed},
+      {"drive.rated_speed", Quantity::speed},       {"drive.no_load_speed", Quantity::speed},
+      {"friction.stribeck_speed", Quantity::speed}, {"maxima.speed_primary", Quantity::speed},
+      {"maxima.speed_secondary", Quantity::speed},  {"maxima.relative_speed", Quantity::speed},
+  };
+  auto it = stated.find(key);
+  return it == stated.end() ? Quantity::plain : it->second;
+}
+
 std::string Scene::where(const std::string& key) const {
   auto it = lines.find(key);
   if (it == lines.end() || it->second == 0) return source;
@@ -177,17 +191,6 @@ std::map<std::string, std::string> read_values(const std::string& text, const Ke
 
 constexpr double largest_magnitude = 1e30, smallest_magnitude = 1e-30;
 
-/// The keys that measure an angle or a speed take a unit after the number.
-Quantity quantity_of(const std::string& key) {
-  static const std::map<std::string, Quantity> stated = {
-      {"gear.backlash", Quantity::angle},         {"initial.twist", Quantity::angle},
-      {"load.backlash", Quantity::angle},         {"initial.speed_primary", Quantity::speed},
-      {"initial.speed_secondary", Quantity::speed}, {"load.speed", Quantity::speed},
-      {"drive.rated_speed", Quantity::speed},     {"drive.no_load_speed", Quantity::speed},
-  };
-  auto it = stated.find(key);
-  return it == stated.end() ? Quantity::plain : it->second;
-}
 
 /// Typed access to the raw strings with the checks every key shares.
 class Reader {
@@ -209,7 +212,7 @@ class Reader {
   std::optional<double> number(const std::string& key) const {
     if (!has(key)) return std::nullopt;
     std::string why;
-    auto value = parse_quantity(values_.at(key), quantity_of(key), why);
+    auto value = parse_quantity(values_.at(key), key_quantity(key), why);
     if (!value) fail(key, why);
     // Physical values in SI units are kept within 1e-30 … 1e30 in magnitude:
     // the solver forms products and quotients of several of them (c/Θ,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "machine/machine_profile.h"
+#include "scene/units.h"
 
 namespace gearpatch {
 
@@ -105,5 +106,9 @@ Scene load_scene(const std::string& path, const std::string& machine);
 /// The keys a scene file may hold, "section.key" → one-line description, for
 /// --help and for rejecting unknown keys.
 const std::map<std::string, std::string>& scene_keys();
+
+/// What a key's value measures: an angle or a speed takes the units
+/// units_of() lists after the number, every other key a bare number.
+Quantity key_quantity(const std::string& key);
 
 }  // namespace gearpatch

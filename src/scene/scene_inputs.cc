@@ -53,6 +53,11 @@ ScalingInput scaling_input(const Scene& s) {
   in.name = s.name;
   in.gear = gear_parameters(s);
   in.initial = initial_state(s);
+  // Where the reference starts: a self-locking gear engaged at t = 0 holds a
+  // secondary that turns against the engagement at once, so the circuit's
+  // integrators start from the speed the lock leaves, not from one its
+  // finite reaction would still have to catch.
+  GearModel(in.gear).initial_mode(in.initial);
   in.duration = s.duration;
   in.rated_torque = s.rated_torque;
   in.rated_speed = s.rated_speed;

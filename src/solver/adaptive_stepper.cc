@@ -42,6 +42,8 @@ class AdaptiveSegment : public Segment {
     return to_state(y);
   }
 
+  bool polynomial_intervals() const override { return true; }  // Dormand–Prince's quintic dense output
+
  private:
   static double initial_step(const GearModel& model, const Mode& mode, double span) {
     const ModeDynamics d = model.dynamics(mode);

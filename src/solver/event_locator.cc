@@ -1,5 +1,6 @@
 #include "solver/event_locator.h"
 
+#include "solver/interval_polynomial.h"
 #include "solver/newton_root.h"
 
 #include <boost/container/small_vector.hpp>
@@ -41,6 +42,46 @@ double crossing_time(const F& f, double lo, double hi, double flo, double fhi, c
   return lo;  // it never went inside: the mode ends at once
 }
 
+/// The states at the interior nodes of [a, b] (IntervalPolynomial::nodes()).
+using NodeStates = std::array<GearState, IntervalPolynomial::degree - 1>;
+
+NodeStates node_states(const Segment& segment, double a, double b) {
+  NodeStates states;
+  for (std::size_t k = 0; k < states.size(); ++k)
+    states[k] = segment.state_at(a + (b - a) * IntervalPolynomial::nodes()[k + 1]);
+  return states;
+}
+
+/// A point where a guard is outside.
+struct Outside {
+  double t, value;
+};
+
+/// The first turning point of a guard inside (a, b) at which it is outside
+/// after having been inside, on a segment whose interval is a polynomial:
+/// a guard that leaves and re-enters between two steps (a contact's twist
+/// dipping below the play for less than a step) is caught there. `f` is the
+/// guard along the segment, `fa` and `fb` its values at a and b.
+template <class F>
+std::optional<Outside> excursion(const F& f, const LinearForm& form, const NodeStates& states, double a, double b,
+                                 double fa, double fb) {
+  std::array<double, IntervalPolynomial::degree + 1> v;
+  const auto& x = IntervalPolynomial::nodes();
+  v.front() = fa, v.back() = fb;
+  for (std::size_t k = 0; k < states.size(); ++k) v[k + 1] = form.at(states[k], a + (b - a) * x[k + 1]);
+  bool inside = fa > 0;
+  std::size_t node = 1;
+  for (const double u : IntervalPolynomial(v).turning_points()) {
+    for (; node < v.size() && x[node] < u; ++node) inside = inside || v[node] > 0;
+    const double t = a + (b - a) * u;
+    if (!(t > a && t < b)) continue;
+    const double value = f(t);
+    if (inside && value < 0) return Outside{t, value};
+    inside = inside || value > 0;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guards, double t0,
@@ -59,17 +100,23 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
     }
     const GearState end = segment.state_at(b);
     Crossing first{b, std::nullopt};
+    const bool polynomial = segment.polynomial_intervals();
+    const NodeStates states = polynomial ? node_states(segment, a, b) : NodeStates{};
     for (std::size_t i = 0; i < guards.size(); ++i) {
       const double value = guards[i].form.at(end, b);
-      if (value < 0) {
-        const LinearForm& form = guards[i].form;
-        auto f = [&](double t) { return form.at(segment.state_at(t), t); };
+      const LinearForm& form = guards[i].form;
+      auto f = [&](double t) { return form.at(segment.state_at(t), t); };
+      Outside out{b, value};
+      if (polynomial)
+        if (const std::optional<Outside> dip = excursion(f, form, states, a, b, before[i], value)) out = *dip;
+      if (out.value < 0) {
         const double flo = a == t0 ? before[i] : std::max(before[i], 0.0);
         // Only the first crossing counts: a guard still inside at the earliest
         // crossing found so far crosses later (no guard re-enters within an
-        // interval), and one that is out there crossed before it.
-        double hi = b, fhi = value;
-        if (first.kind) {
+        // interval of a closed-form segment, and a polynomial one's first
+        // excursion bounds it), and one that is out there crossed before it.
+        double hi = out.t, fhi = out.value;
+        if (first.kind && first.time < hi) {
           fhi = f(first.time);
           if (fhi > 0 || (fhi == 0 && first.time > a)) {
             before[i] = value;

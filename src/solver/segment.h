@@ -25,6 +25,11 @@ class Segment {
   /// cosine, where the mode oscillates with constant forcing (the peak
   /// search then finds turning points from their phase); empty elsewhere.
   virtual std::optional<DampedWaveForm> damped_wave(const LinearForm& /*f*/) const { return std::nullopt; }
+  /// True where the state on each interval handed out is a polynomial of
+  /// degree at most IntervalPolynomial::degree in time (a Runge–Kutta step's
+  /// dense output): a guard may then leave and re-enter within one interval,
+  /// and the locator looks at its turning points.
+  virtual bool polynomial_intervals() const { return false; }
 };
 
 /// Makes the segment of one mode; the exact solver and the adaptive one are

@@ -99,18 +99,38 @@ std::vector<Sample> Trajectory::output() const {
   return merged;
 }
 
-std::string Trajectory::samples_csv() const {
-  std::string text = "t,omega_p,omega_s,dphi,m0,event\n";
-  auto row = [&](const Sample& s, const std::string& kind) {
-    text += fmt::format("{},{},{},{},{},{}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0, kind);
-  };
+namespace {
+
+/// Calls row(sample, event name) for every output row in time order: grid
+/// rows with an empty name, each event's row before a grid row at or after it.
+template <class Row>
+void for_each_row(const Trajectory& t, const Row& row) {
   std::size_t e = 0;
-  for (const Sample& s : samples) {
-    for (; e < event_samples.size() && event_samples[e].t < s.t; ++e)
-      row(event_samples[e], to_string(events[e].kind));
+  for (const Sample& s : t.samples) {
+    for (; e < t.event_samples.size() && t.event_samples[e].t < s.t; ++e)
+      row(t.event_samples[e], to_string(t.events[e].kind));
     row(s, "");
   }
-  for (; e < event_samples.size(); ++e) row(event_samples[e], to_string(events[e].kind));
+  for (; e < t.event_samples.size(); ++e) row(t.event_samples[e], to_string(t.events[e].kind));
+}
+
+}  // namespace
+
+std::string Trajectory::samples_csv() const {
+  std::string text = "t,omega_p,omega_s,dphi,m0,event\n";
+  for_each_row(*this, [&](const Sample& s, const std::string& kind) {
+    text += fmt::format("{},{},{},{},{},{}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0, kind);
+  });
+  return text;
+}
+
+std::string Trajectory::samples_csv(double i) const {
+  std::string text =
+      "t[s],omega_p[rad/s],omega_s[rad/s],dphi[rad],m0[N·m],omega_load[rad/s],twist_load[rad],m0_load[N·m],event\n";
+  for_each_row(*this, [&](const Sample& s, const std::string& kind) {
+    text += fmt::format("{},{},{},{},{},{},{},{},{}\n", s.t, s.omega_p, s.omega_s, s.dphi, s.m0, s.omega_s / i,
+                        s.dphi / i, i * s.m0, kind);
+  });
   return text;
 }
 

@@ -79,6 +79,12 @@ struct Trajectory {
   /// t,omega_p,omega_s,dphi,m0,event: the merged output; `event` is empty on
   /// grid rows and names the guard (contact+, release, ...) on event rows.
   std::string samples_csv() const;
+  /// The same with the load shaft beside the referred values (gear ratio
+  /// i = φ̇p/φ̇load): the header names each column's shaft and unit,
+  /// t[s],omega_p[rad/s],omega_s[rad/s],dphi[rad],m0[N·m],omega_load[rad/s],
+  /// twist_load[rad],m0_load[N·m],event, with φ̇load = φ̇s/i, the twist at
+  /// the load Δφ/i and the tooth torque at the output i·M0.
+  std::string samples_csv(double load_ratio) const;
   std::string events_csv() const;   ///< t,kind,omega_p,omega_s,dphi,mode
 };
 

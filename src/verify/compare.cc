@@ -104,7 +104,17 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
     e.rms_error = rms_distance(tube, c.t, c.signals.at(signal)) / scale;
     out.signals.push_back(e);
   }
-  out.impacts = match_impacts(ref, c, model, {settings.grazing_depth, out.time_tolerance, settings.duration});
+  MatchLimits limits{settings.grazing_depth, out.time_tolerance, settings.duration};
+  const auto scale_of = [&](Signal signal) {
+    for (const auto& [s, scale] : settings.full_scales)
+      if (s == signal) return scale;
+    return 0.0;
+  };
+  // An unmatched contact that changes no judged signal beyond the tolerance is grazing.
+  limits.torque_effect = settings.tolerance * scale_of(Signal::m0);
+  limits.speed_effect_p = settings.tolerance * scale_of(Signal::omega_p);
+  limits.speed_effect_s = settings.tolerance * scale_of(Signal::omega_s);
+  out.impacts = match_impacts(ref, c, model, limits);
   const auto m0 = std::find_if(settings.full_scales.begin(), settings.full_scales.end(),
                                [](const auto& s) { return s.first == Signal::m0; });
   for (Impact& i : out.impacts.impacts) {

@@ -13,7 +13,17 @@ struct Contact {
   double depth = 0, peak = 0;
   double restitution = -1;
   bool released = false;  ///< false: still in contact when the run ends, its peak perhaps not reached
+  double speed_change_p = 0, speed_change_s = 0;  ///< rad/s across the contact (to the run's end if held)
 };
+
+/// Unpaired, this contact is one the judge does not count: too shallow for
+/// the machine to resolve, or changing no signal beyond the tolerance.
+bool grazing(const Contact& c, const MatchLimits& limits) {
+  const bool harmless = limits.torque_effect > 0 && c.peak <= limits.torque_effect &&
+                        std::abs(c.speed_change_p) <= limits.speed_effect_p &&
+                        std::abs(c.speed_change_s) <= limits.speed_effect_s;
+  return c.depth <= limits.grazing_depth || harmless;
+}
 
 /// The reference's contacts as the solver recorded them: depth, peak torque
 /// and restitution from the closed form of each mode, not from the grid.
@@ -23,6 +33,8 @@ std::vector<Contact> reference_contacts(const Trajectory& ref, double eps, bool 
     if (!r.impact) continue;  // the run started in contact: no impact to match
     Contact c{r.start, r.end, std::abs(r.twist.value) - eps, std::abs(r.torque.value)};
     c.released = r.released;
+    c.speed_change_p = r.at_release.omega_p - r.at_impact.omega_p;
+    c.speed_change_s = r.at_release.omega_s - r.at_impact.omega_s;
     if (free && r.released && std::isfinite(r.restitution)) c.restitution = r.restitution;
     out.push_back(c);
   }
@@ -60,9 +72,13 @@ std::vector<Contact> circuit_contacts(const CircuitTrace& c, double eps, bool fr
       out.back().peak = std::max(out.back().peak, std::abs(m[i]));
     }
   }
-  if (!free) return out;
   const auto& wp = c.signals.at(Signal::omega_p);
   const auto& ws = c.signals.at(Signal::omega_s);
+  for (Contact& k : out) {
+    k.speed_change_p = value_at(t, wp, k.end) - value_at(t, wp, k.begin);
+    k.speed_change_s = value_at(t, ws, k.end) - value_at(t, ws, k.begin);
+  }
+  if (!free) return out;
   for (Contact& k : out) {
     if (k.end >= t.back()) break;  // still in contact when the run ends
     const double in = value_at(t, wp, k.begin) - value_at(t, ws, k.begin);
@@ -97,7 +113,7 @@ struct Cost {
 std::vector<int> align(const std::vector<Contact>& ref, const std::vector<Contact>& cir, const MatchLimits& limits) {
   const std::size_t n = ref.size(), m = cir.size();
   const auto unpaired = [&](const Contact& c) {
-    const bool counts = c.depth > limits.grazing_depth && c.begin <= limits.run_end - limits.time_tolerance;
+    const bool counts = !grazing(c, limits) && c.begin <= limits.run_end - limits.time_tolerance;
     return std::pair(counts ? 1 : 0, limits.time_tolerance);  // pairing within 2 tolerances beats two unpaired
   };
   enum Move : unsigned char { pair, skip_reference, skip_circuit };
@@ -174,9 +190,10 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
       m.restitution_circuit = c.restitution;
       m.released = ref[i].released && c.released;
     } else {
-      m.grazing = m.depth <= limits.grazing_depth;
+      m.grazing = grazing(ref[i], limits);
       m.near_end = m.reference > limits.run_end - limits.time_tolerance;
     }
+    m.speed_change_p = ref[i].speed_change_p, m.speed_change_s = ref[i].speed_change_s;
     out.impacts.push_back(m);
   }
   for (std::size_t j = 0; j < cir.size(); ++j)
@@ -186,7 +203,8 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
       m.depth = cir[j].depth;
       m.peak_circuit = cir[j].peak;
       m.restitution_circuit = cir[j].restitution;
-      m.grazing = m.depth <= limits.grazing_depth;
+      m.speed_change_p = cir[j].speed_change_p, m.speed_change_s = cir[j].speed_change_s;
+      m.grazing = grazing(cir[j], limits);
       m.near_end = m.circuit > limits.run_end - limits.time_tolerance;
       out.impacts.push_back(m);
     }

@@ -24,7 +24,8 @@ std::string impact_rows(const VerifyResult& r) {
   const auto ratio = [](double x) { return x < 0 ? std::string("-") : fmt::format("{:.4f}", x); };
   for (std::size_t k = 0; k < std::min(shown, impacts.size()); ++k) {
     const Impact& i = impacts[k];
-    const std::string note = i.grazing ? fmt::format("grazing, {:.3g} rad deep", i.depth)
+    const std::string note = i.grazing ? fmt::format("grazing, {:.3g} rad deep, speeds change by {:.3g} and "
+                                                     "{:.3g} rad/s", i.depth, i.speed_change_p, i.speed_change_s)
                            : i.near_end ? "near the run's end (its partner may lie beyond)"
                            : i.circuit < 0 ? "missing in the circuit"
                            : i.reference < 0 ? "not in the reference" : "";
@@ -81,6 +82,10 @@ std::string measurement_table(const VerifyResult& r) {
   if (const std::string why = adaptive_reason(r.gear); !why.empty())
     t += "reference: adaptive solver (" + why + ")\n";
   t += fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds);
+  if (r.step_halving_change)
+    t += fmt::format("step check: halving the largest ngspice step ({}) moves the circuit's signals by up to "
+                     "{:.3g} % of full scale ({:.2g} of the tolerance)\n",
+                     r.transient, 100 * *r.step_halving_change, *r.step_halving_change / r.tolerance);
   if (r.retry)
     t += fmt::format("ngspice retry: the first run aborted ({}); ran once more with {}\n", r.retry->first_failure,
                      r.retry->change);
@@ -112,6 +117,7 @@ nlohmann::json json_of(const VerifyResult& r) {
   j["deck_scaling"] = r.deck_scaling;  // generated, header or options
   j["scaling"] = r.scaling;
   j["ngspice_seconds"] = r.ngspice_seconds;
+  if (r.step_halving_change) j["step_halving_change"] = *r.step_halving_change;
   j["retry"] = r.retry ? nlohmann::json{{"first_failure", r.retry->first_failure}, {"change", r.retry->change}}
                        : nlohmann::json(nullptr);
   for (const auto& e : r.comparison.signals)

@@ -1,16 +1,19 @@
 #include "verify/verify.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fmt/format.h>
 
 #include "circuit/circuit.h"
+#include "circuit/quality.h"
 #include "model/gear_model.h"
 #include "scaling/patch.h"
 #include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 #include "verify/diagnosis.h"
 #include "verify/trace_check.h"
+#include "verify/tube.h"
 
 namespace gearpatch::verify {
 
@@ -109,6 +112,21 @@ double reference_step(const Scene& scene, const VerifyOptions& options) {
   return std::min(scene.duration / options.transient.output_points, run_spec(scene).output_step);
 }
 
+/// How far a second circuit run of the same deck at another step moves the
+/// signals, judged as the verdict judges: each signal's largest distance from
+/// the first run after the best shift within the time tolerance, as a
+/// fraction of its full scale (a pointwise difference would read a jump
+/// moved by a step as a change of its whole height).
+double trace_change(const CircuitTrace& first, const CircuitTrace& second,
+                    const std::vector<std::pair<Signal, double>>& full_scales, double time_tolerance) {
+  double worst = 0;
+  for (const auto& [signal, scale] : full_scales) {
+    const Tube tube(first.t, first.signals.at(signal), {time_tolerance, 0});
+    worst = std::max(worst, tube.fit(second.t, second.signals.at(signal)).worst_distance / scale);
+  }
+  return worst;
+}
+
 /// verify, its errors from below not yet located in the scene file.
 VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator) {
   VerifyResult r;
@@ -138,8 +156,11 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.scaling = circuit.scaling;
   if (options.deck_header) check_deck_header(*options.deck_header, circuit);
   if (options.deck_text) r.deck_scaling = options.deck_header ? "header" : "options";
-  const std::string deck = options.deck_text.value_or(
-      circuit::render_netlist(circuit, options.transient));
+  // The largest step from the scene's own time scales (the contact period),
+  // never coarser than the preset's.
+  const circuit::TransientControl control = circuit::scene_control(options.transient, input.gear, scene.duration);
+  r.transient = circuit::describe(control);
+  const std::string deck = options.deck_text.value_or(circuit::render_netlist(circuit, control));
 
   const auto start = std::chrono::steady_clock::now();
   // One bounded retry of a generated deck that ngspice aborts: the stiffly
@@ -149,8 +170,8 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   // relative speed, aborted under gear at chgtol 1e-16 and finished at 1e-14;
   // reltol 1e-6 or 1e-8, trtol 1 did not).
   const auto with_gear = [&]() -> std::optional<std::string> {
-    if (options.deck_text || options.transient.method == "gear") return std::nullopt;
-    circuit::TransientControl gear = options.transient;
+    if (options.deck_text || control.method == "gear") return std::nullopt;
+    circuit::TransientControl gear = control;
     gear.method = "gear";
     gear.chgtol = 1e-14;
     return circuit::render_netlist(circuit, gear);
@@ -170,6 +191,16 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   settings.grazing_depth = circuit::comparator_offset(options.level) * patch.maxima.contact_twist;
   r.comparison = compare(r.reference, r.circuit, model, settings);
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
+  if (options.check_step && !options.deck_text) {
+    circuit::TransientControl half = control;  // as the run that gave r.circuit, the retry's method if it ran
+    if (r.retry) half.method = "gear", half.chgtol = 1e-14;
+    half.max_step_points *= 2;
+    half.max_step_seconds /= 2;  // the scene's bound, where it is the tighter one
+    const spice::Vectors finer = simulator.run(circuit::render_netlist(circuit, half), options.limits);
+    r.step_halving_change =
+        trace_change(r.circuit, unscale(finer, circuit, scene.machine.unit_volts), settings.full_scales,
+                     r.comparison.time_tolerance);
+  }
   judge(r);
   if (!r.passed)
     r.diagnosis = diagnose(r, patch);

@@ -30,6 +30,9 @@ struct VerifyOptions {
   bool autoscale = false;               ///< scale from the simulated peaks + 10 % (settings --autoscale)
   bool paper_scaling = false;           ///< the paper's recipe (--scaling paper) instead of the solved scaling
   circuit::TransientControl transient;
+  /// Run the deck a second time at half the largest ngspice step and report
+  /// how far that moves the circuit's signals (`--check-step`).
+  bool check_step = false;
   spice::RunLimits limits;
   /// Changes the built circuit before it is rendered: one machine as built
   /// (a Monte Carlo draw), one imperfection alone (the error budget, diagnosis).
@@ -73,6 +76,10 @@ struct VerifyResult {
   /// without one: level and scaling as the options say, unchecked).
   std::string deck_scaling = "generated";
   bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale)
+  std::string transient;    ///< the deck's transient settings in a few words (circuit::describe)
+  /// With check_step: the largest change of a signal, as a fraction of its
+  /// full scale, when the largest ngspice step is halved; empty otherwise.
+  std::optional<double> step_halving_change;
   std::string scaling = "solved";  ///< the deck header's word: solved, solved-autoscale, paper, autoscale
   GearParameters gear;  ///< the reference model's, for the plot
   Trajectory reference;
