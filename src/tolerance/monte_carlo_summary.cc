@@ -191,16 +191,17 @@ std::string histogram_image(const MonteCarloSummary& m, const std::string& forma
   for (const SignalSpread& s : m.signals) top = std::max(top, 100 * s.max);
   const int bins = 20;
   const double width = top * 1.05 / bins;
+  // Two title lines: what the bars show, then the yield they are judged by.
   std::string script = fmt::format(
-      "set title {} noenhanced\nset xlabel 'a draw''s worst amplitude error, % of full scale'\nset ylabel 'draws'\n"
-      "set style fill transparent solid 0.35\nset xrange [0:*]\nset boxwidth {:g}\nset key top right\n"
-      "set label {} at graph 0.02, graph 0.95 left\n",
+      "set title {}.\"\\n\".{} noenhanced\nset xlabel 'a draw''s worst amplitude error, % of full scale'\n"
+      "set ylabel 'draws'\nset style fill transparent solid 0.35\nset xrange [0:*]\nset boxwidth {:g}\n"
+      "set key outside below\n",
       gnuplot_string(fmt::format("{}: each signal's worst amplitude error in {} draws (seed {})",
                                  m.study.scene_path.substr(m.study.scene_path.find_last_of('/') + 1), m.completed,
                                  m.study.seed)),
-      width,
       gnuplot_string(fmt::format("yield {:.0f} %: {} of {} draws pass every check (signals, impacts, peaks, "
-                                 "restitution, overloads)", 100 * m.yield, m.passed, m.completed)));
+                                 "restitution, overloads)", 100 * m.yield, m.passed, m.completed)),
+      width);
   script += fmt::format("set arrow from {0:g}, graph 0 to {0:g}, graph 1 nohead dt 2 lw 2 lc rgb 'red'\n"
                         "set label 'tolerance {0:g} %' at {0:g}, graph 0.95 right offset -0.5,0 tc rgb 'red'\n", top == 0 ? 0 : 100 * m.study.judged_tolerance());
   std::string plots;
