@@ -1,7 +1,7 @@
 #!/bin/bash
 # The hardware level's per-example tables (docs/hardware-circuits.md):
 #   bench/hardware-tables.sh perfect          # THE ANALOG THING, perfect components
-#   bench/hardware-tables.sh monte-carlo [N]  # THE ANALOG THING, N drawn machines (default 200)
+#   bench/hardware-tables.sh monte-carlo [N [SCENE...]]  # THE ANALOG THING, N drawn machines (default 200)
 #   bench/hardware-tables.sh classic          # the classic machine (trimmed offsets)
 # Each example scene is verified at the hardware level at 2 % of full scale.
 # perfect and classic: one verify per scene; worst = the largest signal error
@@ -14,6 +14,7 @@ mode=${1:-perfect}
 draws=${2:-200}
 gearpatch=$(realpath "${GEARPATCH:-build/gearpatch}")
 scenes="bild5a bild5b bild5c bild6a bild6b bild6c driven"
+[ $# -gt 2 ] && scenes="${*:3}"  # monte-carlo: only these examples
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <clocale>
 #include <regex>
+#include <set>
 
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
@@ -75,6 +76,30 @@ TEST_CASE("ngspice parses and runs every generated deck", "[netlist][ngspice]") 
       CHECK(v.at("v(wp)").front() / scene.machine.unit_volts ==
             Approx(scene.speed_primary / make_patch(scene).maxima.speed_primary).margin(2e-3));
     }
+}
+
+TEST_CASE("a deck saves only the vectors verify reads; without its .save it writes every node, the same ones alike",
+          "[netlist][ngspice]") {
+  auto ngspice = spice::make_batch_ngspice();
+  const Generated g = generate("bild6c", Level::hardware);
+  const spice::Vectors saved = ngspice->run(g.deck, {});
+  std::size_t wanted = 1;  // time
+  for (const auto& [signal, probe] : g.circuit.probes) CHECK(saved.has("v(" + probe.node + ")"));
+  std::set<std::string> nodes;
+  for (const auto& [signal, probe] : g.circuit.probes) nodes.insert(probe.node);
+  for (const auto& node : g.circuit.amplifier_outputs()) nodes.insert(node);
+  for (const auto& node : nodes) CHECK(saved.has("v(" + node + ")"));
+  wanted += nodes.size();
+  CHECK(saved.data.size() == wanted);
+  // A deck a person edited may lack the card: ngspice writes every node, and the probes read the same.
+  const std::string card = "\n.save ";
+  const auto from = g.deck.find(card), to = g.deck.find("\n\n", from + 1);
+  REQUIRE(from != std::string::npos);
+  const std::string unsaved = g.deck.substr(0, from) + g.deck.substr(to);
+  REQUIRE(unsaved.find("\n.save") == std::string::npos);
+  const spice::Vectors all = ngspice->run(unsaved, {});
+  CHECK(all.data.size() > 3 * saved.data.size());
+  for (const auto& node : nodes) CHECK(all.at("v(" + node + ")") == saved.at("v(" + node + ")"));
 }
 
 TEST_CASE("a frictionless deck has no friction, absolute-value or self-locking blocks", "[netlist]") {
