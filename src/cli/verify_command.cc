@@ -7,6 +7,7 @@
 #include "circuit/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
+#include "cli/verify_measured.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
@@ -112,6 +113,7 @@ int run_verify(const std::vector<std::string>& args) {
   add_quality_option(options, "; with --deck, the deck's own");
   add_machine_option(options);
   add_scaling_option(options);
+  add_measured_options(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
@@ -120,7 +122,9 @@ int run_verify(const std::vector<std::string>& args) {
                        "ends short of the run (the deck is kept), 4: internal error.",
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
-                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%"},
+                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",
+                        "gearpatch verify scenes/bild5b.ini --machine the-analog-thing --measured "
+                        "scenes/traces/bild5b.the-analog-thing.csv"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "verify");
@@ -130,6 +134,7 @@ int run_verify(const std::vector<std::string>& args) {
   o.autoscale = vm.count("autoscale") > 0;
   o.paper_scaling = paper_scaling(vm);
   o.transient = chosen_quality(vm);
+  if (vm.count("measured")) return run_verify_measured(vm, file, o);
   if (vm.count("deck")) {
     const std::string path = vm["deck"].as<std::string>();
     o.deck_text = read_file(path);

@@ -104,7 +104,9 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
     e.rms_error = rms_distance(tube, c.t, c.signals.at(signal)) / scale;
     out.signals.push_back(e);
   }
-  out.impacts = match_impacts(ref, c, model, {settings.grazing_depth, out.time_tolerance, settings.duration});
+  // A recording may lack a channel: its impacts need all four signals, the momentum both speeds.
+  const bool all_four = std::all_of(all_signals.begin(), all_signals.end(), [&](Signal s) { return c.signals.count(s); });
+  if (all_four) out.impacts = match_impacts(ref, c, model, {settings.grazing_depth, out.time_tolerance, settings.duration});
   const auto m0 = std::find_if(settings.full_scales.begin(), settings.full_scales.end(),
                                [](const auto& s) { return s.first == Signal::m0; });
   for (Impact& i : out.impacts.impacts) {
@@ -116,7 +118,7 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
       out.worst_impact_shift = 1;
     if (i.restitution_circuit >= 0) out.restitution.push_back(i.restitution_circuit);
   }
-  if (frictionless_and_free(model.parameters())) out.momentum_drift = momentum_drift(ref, c, model.parameters());
+  if (all_four && frictionless_and_free(model.parameters())) out.momentum_drift = momentum_drift(ref, c, model.parameters());
   return out;
 }
 

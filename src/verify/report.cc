@@ -74,7 +74,7 @@ std::string to_table(const VerifyResult& r) {
   for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
   if (const std::string why = adaptive_reason(r.gear); !why.empty())
     t += "reference: adaptive solver (" + why + ")\n";
-  t += fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds);
+  t += r.source.empty() ? fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds) : r.source;
   if (r.retry)
     t += fmt::format("ngspice retry: the first run aborted ({}); ran once more with {}\n", r.retry->first_failure,
                      r.retry->change);
