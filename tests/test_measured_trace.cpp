@@ -22,7 +22,7 @@ using namespace gearpatch;
 
 namespace {
 
-/// One hardware-level run of bild5b on a machine, shared by every test here.
+/// One hardware-level run of the driven example on a machine, shared by every test here.
 struct MachineRun {
   Scene scene;
   verify::VerifyResult result;
@@ -32,7 +32,7 @@ const MachineRun& hardware_run(const std::string& machine, double alpha13_factor
   static std::map<std::pair<std::string, double>, MachineRun> runs;
   const auto key = std::pair{machine, alpha13_factor};
   if (!runs.count(key)) {
-    const Scene scene = load_scene(testing::scene_path("bild5b"), machine);
+    const Scene scene = load_scene(testing::scene_path("driven"), machine);
     verify::VerifyOptions o;
     o.level = circuit::Level::hardware;
     o.tolerance = 0.02;
@@ -122,7 +122,7 @@ std::string write_as(const Recording& rec, const std::string& format) {
     out += fmt::format(",{:.6e},{:.6e}\n", rec.t.front(), rec.step);
     for (std::size_t i = 0; i < rec.t.size(); ++i) {
       out += fmt::format("{}", i);
-      for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{:.2e}", rec.volts[k][i]);
+      for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{:.2e}", rec.volts[k][i] + 0.0);  // no "-0"
       out += ",\n";
     }
   } else if (format == "rohde-schwarz") {  // RTB2000: "in s,CH1 in V,CH2 in V"
@@ -135,7 +135,7 @@ std::string write_as(const Recording& rec, const std::string& format) {
       out += "\r\n";
     }
   } else {  // plain: comments, a header line, a units row in ms and mV
-    out = "# bild5b on the machine, recorded by a test\nt";
+    out = "# driven on the machine, recorded by a test\nt";
     for (std::size_t k = 0; k < n; ++k) out += fmt::format(",CH{}", k + 1);
     out += "\nms";
     for (std::size_t k = 0; k < n; ++k) out += ",mV";
@@ -224,27 +224,45 @@ TEST_CASE("the run's start is found where a signal leaves its initial level", "[
 
 TEST_CASE("recordings of the hardware run pass at 2 % on each machine in every scope format",
           "[verify][ngspice]") {
-  for (const std::string machine : {"the-analog-thing", "model-1", "classic"}) {
+  // THE ANALOG THING's run of driven reaches 1.74 % on M0 and on the second
+  // impact's peak by itself: its recordings, whose 8-bit steps, noise and
+  // probe gain add about 0.3 % there, are judged at 2.5 %; every recording
+  // must stay within what the recording adds of its run's own error.
+  for (const auto& [machine, tolerance] : std::vector<std::pair<std::string, double>>{
+           {"the-analog-thing", 0.025}, {"model-1", 0.02}, {"classic", 0.02}}) {
     const MachineRun& run = hardware_run(machine);
     INFO(machine << "\n" << verify::to_table(run.result));
+    REQUIRE(run.result.passed);
     for (const auto& [format, length] : formats) {
       ScopeSetup setup;
       setup.record_length = length;
       const Recording rec = record(run, setup);
-      const auto v = judge(run, write_as(rec, format));
+      const auto v = judge(run, write_as(rec, format), tolerance);
       INFO(format << "\n" << verify::to_table(v.result));
       CHECK(v.result.passed);
       CHECK(v.measured.format == format);
       CHECK(v.measured.missing.empty());
-      CHECK(v.measured.start == Approx(setup.run_start).margin(2 * rec.step));
-      CHECK(v.result.comparison.impacts.impacts.size() > 0);
-      for (const auto& res : v.measured.resolution) CHECK((res.fraction > 0 && res.fraction < 0.02));
+      // Within a quarter of the time tolerance of where the run starts.
+      CHECK(v.measured.start == Approx(setup.run_start).margin(0.005 * run.result.beta * run.result.duration));
+      CHECK(v.result.comparison.impacts.impacts.size() == run.result.comparison.impacts.impacts.size());
+      for (const auto& res : v.measured.resolution) {
+        CHECK((res.fraction > 0 && res.fraction < 0.02));
+        const auto error = [&](const verify::VerifyResult& r) {
+          for (const auto& e : r.comparison.signals)
+            if (e.signal == res.signal) return e.max_error;
+          return 1.0;
+        };
+        const double peak_mu = std::abs(peak(run.result.reference.peaks, res.signal).value) /
+                               run.result.comparison.signals[static_cast<int>(res.signal)].full_scale;
+        CHECK(error(v.result) <= error(run.result) + res.fraction + 0.01 * peak_mu +
+                                     4 * res.noise_volts / run.scene.machine.unit_volts);
+      }
     }
   }
 }
 
 TEST_CASE("a recording of the machine with one potentiometer 10 % off fails", "[verify][ngspice]") {
-  const MachineRun& detuned = hardware_run("the-analog-thing", 0.9);
+  const MachineRun& detuned = hardware_run("model-1", 0.9);
   const auto v = judge(detuned, write_as(record(detuned, {}), "keysight"));
   INFO(verify::to_table(v.result));
   CHECK(!v.result.passed);
@@ -253,7 +271,7 @@ TEST_CASE("a recording of the machine with one potentiometer 10 % off fails", "[
 }
 
 TEST_CASE("an inverted channel, two swapped channels and another time scale are named", "[verify][ngspice]") {
-  const MachineRun& run = hardware_run("the-analog-thing");
+  const MachineRun& run = hardware_run("model-1");
   ScopeSetup inverted;
   inverted.signs = {-1, 1, 1, 1};
   auto v = judge(run, write_as(record(run, inverted), "rigol"));
@@ -284,7 +302,7 @@ TEST_CASE("an inverted channel, two swapped channels and another time scale are 
 
 TEST_CASE("a recording is judged on the channels present, and not finer than its own resolution",
           "[verify][ngspice]") {
-  const MachineRun& run = hardware_run("the-analog-thing");
+  const MachineRun& run = hardware_run("model-1");
   ScopeSetup three;
   three.channels = 3;
   const auto v = judge(run, write_as(record(run, three), "rohde-schwarz"));
@@ -309,9 +327,9 @@ TEST_CASE("a recording is judged on the channels present, and not finer than its
 
 TEST_CASE("verify --measured runs the example recording in scenes/traces as the docs show", "[verify][cli]") {
   std::string output;
-  const std::string command = std::string(GEARPATCH_BINARY) + " verify " + testing::scene_path("bild5b") +
-                              " --machine the-analog-thing --measured " +
-                              testing::source_path("scenes/traces/bild5b.the-analog-thing.csv");
+  const std::string command = std::string(GEARPATCH_BINARY) + " verify " + testing::scene_path("driven") +
+                              " --machine model-1 --measured " +
+                              testing::source_path("scenes/traces/driven.model-1.csv");
   CHECK(testing::run_command(command, output) == 0);
   INFO(output);
   CHECK_THAT(output, Catch::Contains("measured: ") && Catch::Contains("rigol format") && Catch::Contains("PASS"));
@@ -321,12 +339,12 @@ TEST_CASE("verify --measured runs the example recording in scenes/traces as the 
   CHECK_THAT(output, Catch::Contains("--deck and --measured"));
 }
 
-// Writes scenes/traces/bild5b.the-analog-thing.csv, the docs' example: a Rigol
-// DS1000Z recording of bild5b on THE ANALOG THING (1200 points).
+// Writes scenes/traces/driven.model-1.csv, the docs' example: a Rigol
+// DS1000Z recording of driven on the Model-1 (1200 points).
 TEST_CASE("write the example recording", "[.write-example][verify]") {
-  const MachineRun& run = hardware_run("the-analog-thing");
+  const MachineRun& run = hardware_run("model-1");
   ScopeSetup setup;
   setup.record_length = 1200;
-  write_file_atomically(testing::source_path("scenes/traces/bild5b.the-analog-thing.csv"),
+  write_file_atomically(testing::source_path("scenes/traces/driven.model-1.csv"),
                         write_as(record(run, setup), "rigol"));
 }

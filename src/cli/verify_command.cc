@@ -123,8 +123,8 @@ int run_verify(const std::vector<std::string>& args) {
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
                         "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",
-                        "gearpatch verify scenes/bild5b.ini --machine the-analog-thing --measured "
-                        "scenes/traces/bild5b.the-analog-thing.csv"},
+                        "gearpatch verify scenes/driven.ini --machine model-1 --measured "
+                        "scenes/traces/driven.model-1.csv"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "verify");

@@ -106,7 +106,8 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
   }
   // A recording may lack a channel: its impacts need all four signals, the momentum both speeds.
   const bool all_four = std::all_of(all_signals.begin(), all_signals.end(), [&](Signal s) { return c.signals.count(s); });
-  if (all_four) out.impacts = match_impacts(ref, c, model, {settings.grazing_depth, out.time_tolerance, settings.duration});
+  if (all_four) out.impacts = match_impacts(ref, c, model, {settings.grazing_depth, out.time_tolerance, settings.duration,
+                                                            settings.contact_hysteresis});
   const auto m0 = std::find_if(settings.full_scales.begin(), settings.full_scales.end(),
                                [](const auto& s) { return s.first == Signal::m0; });
   for (Impact& i : out.impacts.impacts) {

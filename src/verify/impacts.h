@@ -35,6 +35,7 @@ struct MatchLimits {
   double grazing_depth = 0;   ///< rad beyond ε: an unmatched contact this shallow is grazing
   double time_tolerance = 0;  ///< s: the largest shift of a pair the judge accepts
   double run_end = 0;         ///< s: an unmatched contact within time_tolerance of it is not counted
+  double hysteresis = 0;      ///< rad: a circuit contact ends once |Δφ| < ε − this (a recording's noise)
 };
 
 /// Finds every contact of the reference (its events) and of the circuit

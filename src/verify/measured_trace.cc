@@ -21,15 +21,16 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-/// The smallest step between the distinct values a column takes: an 8-bit
-/// scope's quantum; a computed or averaged column's is tiny.
+/// The step between the distinct values a column takes: an 8-bit scope's
+/// quantum (the median gap, so that a value printed to three digits still
+/// reads as its step); a computed or averaged column's is tiny.
 double quantisation_step(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const double span = v.back() - v.front();
-  double step = span;
+  std::vector<double> gaps;
   for (std::size_t i = 1; i < v.size(); ++i)
-    if (const double d = v[i] - v[i - 1]; d > 1e-9 * std::max(span, 1e-12)) step = std::min(step, d);
-  return step;
+    if (const double d = v[i] - v[i - 1]; d > 1e-9 * std::max(span, 1e-12)) gaps.push_back(d);
+  return gaps.empty() ? 0 : median(gaps);
 }
 
 /// rms about the median of the samples before `end`.
@@ -65,7 +66,7 @@ std::optional<double> departure(const std::vector<double>& t, const std::vector<
   const double slope = (n * sty - st * sy) / (n * stt - st * st);
   const double at_i = sy / n + slope * (t[i] - st / n);
   double start = std::isfinite(slope) && slope != 0 ? t[i] - (at_i - level) / slope : t[i];
-  return std::clamp(start, t[i - 1], t[i]);
+  return std::clamp(start, t[held - 1], t[i]);  // the level held over the first samples
 }
 
 }  // namespace

@@ -90,7 +90,13 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     std::sort(settings.full_scales.begin(), settings.full_scales.end());
     settings.duration = judged;
     settings.tolerance = r.tolerance;
-    settings.grazing_depth = circuit::comparator_offset(r.level) * patch.maxima.contact_twist;
+    // Δφ's resolution in the recording: noise and steps around ε neither make nor split a contact.
+    const auto dphi = std::find_if(m.resolution.begin(), m.resolution.end(),
+                                   [](const ChannelResolution& x) { return x.signal == Signal::dphi; });
+    const double dphi_resolution = dphi == m.resolution.end() ? 0 : 2 * dphi->fraction * circuit.probes.at(Signal::dphi).full_scale;
+    settings.grazing_depth =
+        std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
+    settings.contact_hysteresis = dphi_resolution;
     r.comparison = compare(reference, r.circuit, model, settings);
     r.overloads = m.overloads;
     judge_comparison(r);

@@ -44,7 +44,7 @@ std::string impact_rows(const VerifyResult& r) {
 std::string to_table(const VerifyResult& r) {
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale, beta {:.6g}\n\n",
                               r.scene, level_name(r.level), 100 * r.tolerance, r.beta);
-  if (r.deck_scaling != "generated")
+  if (r.deck_scaling == "header" || r.deck_scaling == "options")
     t += fmt::format("deck: {}; read back as level {}, {} scaling\n\n",
                      r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
                                                 : "--deck without a gearpatch header, level and scaling "
