@@ -127,6 +127,21 @@ double option_value(const std::map<std::string, double>& m, const std::string& c
   return it == m.end() ? otherwise : it->second;
 }
 
+/// Each recorded column's worst excursion beyond ±1 machine unit, its steps and noise allowed.
+std::vector<Overload> recorded_overloads(const MeasuredTrace& m) {
+  std::vector<Overload> out;
+  for (const ChannelReading& r : m.readings) {
+    const auto& mu = m.machine_units.at(r.signal);
+    Overload worst{r.channel + " (" + to_string(r.signal) + ")", 0, 0};
+    for (std::size_t i = 0; i < m.trace.t.size(); ++i)
+      if (std::abs(mu[i]) > std::abs(worst.value)) worst.t = m.trace.t[i], worst.value = mu[i];
+    // A recording's steps and noise reach a little beyond a signal that touches 1 MU.
+    const auto res = std::find_if(m.resolution.begin(), m.resolution.end(), [&](const auto& x) { return x.signal == r.signal; });
+    if (std::abs(worst.value) > 1 + res->fraction + 1e-6) out.push_back(worst);
+  }
+  return out;
+}
+
 }  // namespace
 
 MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o, const circuit::Circuit& circuit,
@@ -183,15 +198,7 @@ MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o,
     throw Error(fmt::format("{}: fewer than two samples between the run's start (t = {:.6g} s) and its end", o.path,
                             m.start));
   m.span = m.trace.t.back();
-  for (const ChannelReading& r : m.readings) {
-    const auto& mu = m.machine_units.at(r.signal);
-    Overload worst{r.channel + " (" + to_string(r.signal) + ")", 0, 0};
-    for (std::size_t i = 0; i < m.trace.t.size(); ++i)
-      if (std::abs(mu[i]) > std::abs(worst.value)) worst.t = m.trace.t[i], worst.value = mu[i];
-    // A recording's steps and noise reach a little beyond a signal that touches 1 MU.
-    const auto res = std::find_if(m.resolution.begin(), m.resolution.end(), [&](const auto& x) { return x.signal == r.signal; });
-    if (std::abs(worst.value) > 1 + res->fraction + 1e-6) m.overloads.push_back(worst);
-  }
+  m.overloads = recorded_overloads(m);
   return m;
 }
 

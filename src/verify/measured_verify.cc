@@ -42,6 +42,32 @@ void refuse_finer_than_resolution(const MeasuredTrace& m, double tolerance, cons
                               100 * r.fraction * 1.05));
 }
 
+/// The comparison of the recording with the reference, as verify compares a deck's run.
+void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::Circuit& circuit, const Patch& patch,
+                       const GearModel& model, double run_duration) {
+  // A recording that ends before the run is judged over what it holds.
+  const double judged = m.span < run_duration * (1 - r.tolerance) ? m.span : run_duration;
+  const Trajectory reference = judged < run_duration ? cut(r.reference, judged) : r.reference;
+  r.duration = judged;
+  r.circuit = m.trace;
+  CompareSettings settings;
+  for (const ChannelReading& c : m.readings)
+    settings.full_scales.emplace_back(c.signal, circuit.probes.at(c.signal).full_scale);
+  std::sort(settings.full_scales.begin(), settings.full_scales.end());
+  settings.duration = judged;
+  settings.tolerance = r.tolerance;
+  // Δφ's resolution in the recording: noise and steps around ε neither make nor split a contact.
+  const auto dphi = std::find_if(m.resolution.begin(), m.resolution.end(),
+                                 [](const ChannelResolution& x) { return x.signal == Signal::dphi; });
+  const double dphi_resolution =
+      dphi == m.resolution.end() ? 0 : 2 * dphi->fraction * circuit.probes.at(Signal::dphi).full_scale;
+  settings.grazing_depth =
+      std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
+  settings.contact_hysteresis = dphi_resolution;
+  r.comparison = compare(reference, r.circuit, model, settings);
+  r.overloads = m.overloads;
+}
+
 }  // namespace
 
 MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options, const std::string& text,
@@ -79,26 +105,7 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     const MeasuredTrace& m = out.measured;
     refuse_finer_than_resolution(m, r.tolerance, mo.path);
 
-    // A recording that ends before the run is judged over what it holds.
-    const double judged = m.span < scene.duration * (1 - r.tolerance) ? m.span : scene.duration;
-    const Trajectory reference = judged < scene.duration ? cut(r.reference, judged) : r.reference;
-    r.duration = judged;
-    r.circuit = m.trace;
-    CompareSettings settings;
-    for (const ChannelReading& c : m.readings)
-      settings.full_scales.emplace_back(c.signal, circuit.probes.at(c.signal).full_scale);
-    std::sort(settings.full_scales.begin(), settings.full_scales.end());
-    settings.duration = judged;
-    settings.tolerance = r.tolerance;
-    // Δφ's resolution in the recording: noise and steps around ε neither make nor split a contact.
-    const auto dphi = std::find_if(m.resolution.begin(), m.resolution.end(),
-                                   [](const ChannelResolution& x) { return x.signal == Signal::dphi; });
-    const double dphi_resolution = dphi == m.resolution.end() ? 0 : 2 * dphi->fraction * circuit.probes.at(Signal::dphi).full_scale;
-    settings.grazing_depth =
-        std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
-    settings.contact_hysteresis = dphi_resolution;
-    r.comparison = compare(reference, r.circuit, model, settings);
-    r.overloads = m.overloads;
+    compare_recording(r, m, circuit, patch, model, scene.duration);
     judge_comparison(r);
     if (!r.passed) {
       r.diagnosis = what_the_trace_looks_like(m, r.reference, model, circuit, scene.duration, r.tolerance);
