@@ -204,6 +204,12 @@ TEST_CASE("each scope format is read as its manual shows it", "[verify]") {
                     Catch::Contains("bad.csv:3: 'x' (column 2) is not a number"));
   CHECK_THROWS_WITH(verify::read_scope_csv("t,CH1\n0,1\n1,2\n", "t.csv", "keysight"),
                     Catch::Contains("t.csv:1: not an InfiniiVision CSV"));
+  // The options that name columns.
+  const auto inverted = verify::parse_channel_reading("omega_s=-2");
+  CHECK((inverted.signal == Signal::omega_s && inverted.channel == "CH2" && inverted.sign == -1));
+  CHECK_THROWS_WITH(verify::parse_channel_reading("speed=CH1"), Catch::Contains("'speed' is not a signal"));
+  CHECK(verify::parse_channel_number("--probe", "ch3=10") == std::pair<std::string, double>{"CH3", 10});
+  CHECK_THROWS_WITH(verify::parse_channel_number("--probe", "CH3=0"), Catch::Contains("write CHANNEL=NUMBER"));
 }
 
 TEST_CASE("the run's start is found where a signal leaves its initial level", "[verify]") {

@@ -119,7 +119,8 @@ int run_verify(const std::vector<std::string>& args) {
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
                        "physical units and compares it with the reference model. Exit status 0:\n"
                        "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
-                       "ends short of the run (the deck is kept), 4: internal error.",
+                       "ends short of the run (the deck is kept), 4: internal error. With --measured\n"
+                       "FILE it judges an oscilloscope recording of the patched machine instead.",
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
                         "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",
