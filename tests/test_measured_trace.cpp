@@ -11,6 +11,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "scene/random_scene.h"
 #include "scene/scene.h"
 #include "spice/batch_ngspice.h"
 #include "support.h"
@@ -85,7 +86,7 @@ Recording record(const MachineRun& run, const ScopeSetup& s) {
     const Signal signal = all_signals[s.order[k]];
     const auto fs = std::find_if(r.comparison.signals.begin(), r.comparison.signals.end(),
                                  [&](const auto& e) { return e.signal == signal; })->full_scale;
-    const double vdiv = verify::volts_per_division(peak(r.reference.peaks, signal).value / fs * unit);
+    const double vdiv = verify::watch_scale(peak(r.reference.peaks, signal).value / fs, unit);
     const double lsb = 8 * vdiv / 256;
     std::vector<double> v;
     for (double t : rec.t) {
@@ -164,6 +165,24 @@ std::string all_diagnosis(const verify::VerifyResult& r) {
   std::string s;
   for (const auto& d : r.diagnosis) s += d + "\n";
   return s;
+}
+
+/// Each recorded signal's error exceeds the run's own by at most what the
+/// recording adds: its resolution, the probe's 1 % of the signal's peak and
+/// four times its noise.
+void check_error_within_recording(const MachineRun& run, const verify::MeasuredVerify& v) {
+  for (const auto& res : v.measured.resolution) {
+    const auto error = [&](const verify::VerifyResult& r) {
+      for (const auto& e : r.comparison.signals)
+        if (e.signal == res.signal) return e.max_error;
+      return 1.0;
+    };
+    const double peak_mu = std::abs(peak(run.result.reference.peaks, res.signal).value) /
+                           run.result.comparison.signals[static_cast<int>(res.signal)].full_scale;
+    INFO(to_string(res.signal) << ": run " << error(run.result) << ", recording " << error(v.result));
+    CHECK(error(v.result) <= error(run.result) + res.fraction + 0.01 * peak_mu +
+                                 4 * res.noise_volts / run.scene.machine.unit_volts);
+  }
 }
 
 }  // namespace
@@ -251,18 +270,38 @@ TEST_CASE("recordings of the hardware run pass at 2 % on each machine in every s
       // Within a quarter of the time tolerance of where the run starts.
       CHECK(v.measured.start == Approx(setup.run_start).margin(0.005 * run.result.beta * run.result.duration));
       CHECK(v.result.comparison.impacts.impacts.size() == run.result.comparison.impacts.impacts.size());
-      for (const auto& res : v.measured.resolution) {
-        CHECK((res.fraction > 0 && res.fraction < 0.02));
-        const auto error = [&](const verify::VerifyResult& r) {
-          for (const auto& e : r.comparison.signals)
-            if (e.signal == res.signal) return e.max_error;
-          return 1.0;
-        };
-        const double peak_mu = std::abs(peak(run.result.reference.peaks, res.signal).value) /
-                               run.result.comparison.signals[static_cast<int>(res.signal)].full_scale;
-        CHECK(error(v.result) <= error(run.result) + res.fraction + 0.01 * peak_mu +
-                                     4 * res.noise_volts / run.scene.machine.unit_volts);
-      }
+      for (const auto& res : v.measured.resolution) CHECK((res.fraction > 0 && res.fraction < 0.02));
+      check_error_within_recording(run, v);
+    }
+  }
+}
+
+TEST_CASE("recordings of fresh random scenes on the classic machine add no more than their own resolution",
+          "[verify][ngspice]") {
+  // Scenes the reading was not tuned on: the seeded generator, a seed of its
+  // own. A signal peaking near 1 MU is watched at 5 V/div, whose 8-bit steps
+  // are 1.56 % of the unit: with the probe's 1 % such recordings need more
+  // than 2 % (measured: omega_p 2.9 % and 2.4 % here), so the check is that
+  // the recording adds no more error than it brings, and finds the start.
+  for (int index : {2, 6}) {
+    const RandomScene random = random_scene(20261127, index);
+    MachineRun run{parse_scene(random.text, random.name + ".ini", "classic"), {}};
+    verify::VerifyOptions o;
+    o.level = circuit::Level::hardware;
+    o.tolerance = 0.02;
+    auto ngspice = spice::make_batch_ngspice();
+    run.result = verify::verify(run.scene, o, *ngspice);
+    INFO(random.name << " (" << to_string(random.feature) << ")\n" << random.text << verify::to_table(run.result));
+    REQUIRE(run.result.passed);  // classic passes every random scene at 2 % (test_random_hardware.cpp)
+    for (const auto& [format, length] : {std::pair{"rigol", 1200}, std::pair{"keysight", 2000}}) {
+      ScopeSetup setup;
+      setup.record_length = length;
+      setup.run_start = -0.1 * run.result.beta * run.result.duration;
+      const auto v = judge(run, write_as(record(run, setup), format), 0.03);
+      INFO(format << "\n" << verify::to_table(v.result));
+      CHECK(v.result.passed);
+      CHECK(v.measured.start == Approx(setup.run_start).margin(0.005 * run.result.beta * run.result.duration));
+      check_error_within_recording(run, v);
     }
   }
 }

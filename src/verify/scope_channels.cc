@@ -14,6 +14,10 @@ double volts_per_division(double volts) {
   return 10 * decade;
 }
 
+double watch_scale(double peak_mu, double unit_volts) {
+  return volts_per_division(std::clamp(std::abs(peak_mu), 0.05, 1.0) * unit_volts);
+}
+
 std::vector<WatchedSignal> provisional_watch_list(const circuit::Circuit& circuit,
                                                   const std::vector<std::pair<Signal, double>>& peak_mu) {
   std::vector<WatchedSignal> list;
@@ -22,8 +26,8 @@ std::vector<WatchedSignal> provisional_watch_list(const circuit::Circuit& circui
     if (!circuit.probes.count(s)) continue;
     double peak = 1;
     for (const auto& [signal, mu] : peak_mu)
-      if (signal == s) peak = std::min(std::max(std::abs(mu), 0.05), 1.0);
-    list.push_back({s, fmt::format("CH{}", channel++), 1.0, volts_per_division(peak * circuit.machine.unit_volts)});
+      if (signal == s) peak = mu;
+    list.push_back({s, fmt::format("CH{}", channel++), 1.0, watch_scale(peak, circuit.machine.unit_volts)});
   }
   return list;
 }
