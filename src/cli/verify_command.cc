@@ -5,6 +5,7 @@
 #include "circuit/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
+#include "cli/verify_measured.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
@@ -95,6 +96,7 @@ int run_verify(const std::vector<std::string>& args) {
   add_quality_option(options, "; with --deck, the deck's own");
   add_machine_option(options);
   add_scaling_option(options);
+  add_measured_options(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch verify SCENE [options]\n\n"
                        "Generates the deck, runs ngspice in batch mode, reads the result back in\n"
@@ -103,11 +105,14 @@ int run_verify(const std::vector<std::string>& args) {
                        "the tolerance (--tolerance, else 0.5% ideal, 2% hardware), never at the error\n"
                        "budget, which --budget prints beside the measurement. Exit status 0:\n"
                        "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
-                       "ends short of the run (the deck is kept), 4: internal error.",
+                       "ends short of the run (the deck is kept), 4: internal error. With --measured\n"
+                       "FILE it judges an oscilloscope recording of the patched machine instead.",
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
                         "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",
-                        "gearpatch verify scenes/bild6b.ini --level hardware --machine classic --budget"},
+                        "gearpatch verify scenes/bild6b.ini --level hardware --machine classic --budget",
+                        "gearpatch verify scenes/driven.ini --machine model-1 --measured "
+                        "scenes/traces/driven.model-1.csv"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "verify");
@@ -118,6 +123,7 @@ int run_verify(const std::vector<std::string>& args) {
   o.paper_scaling = paper_scaling(vm);
   o.transient = chosen_quality(vm);
   o.check_step = vm.count("check-step") > 0;
+  if (vm.count("measured")) return run_verify_measured(vm, file, o);
   if (vm.count("deck")) {
     const std::string path = vm["deck"].as<std::string>();
     o.deck_text = read_file(path);

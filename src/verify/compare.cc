@@ -104,7 +104,10 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
     e.rms_error = rms_distance(tube, c.t, c.signals.at(signal)) / scale;
     out.signals.push_back(e);
   }
+  // A recording may lack a channel: its impacts need all four signals, the momentum both speeds.
+  const bool all_four = std::all_of(all_signals.begin(), all_signals.end(), [&](Signal s) { return c.signals.count(s); });
   MatchLimits limits{settings.grazing_depth, out.time_tolerance, settings.duration};
+  limits.hysteresis = settings.contact_hysteresis;
   const auto scale_of = [&](Signal signal) {
     for (const auto& [s, scale] : settings.full_scales)
       if (s == signal) return scale;
@@ -114,7 +117,7 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
   limits.torque_effect = settings.tolerance * scale_of(Signal::m0);
   limits.speed_effect_p = settings.tolerance * scale_of(Signal::omega_p);
   limits.speed_effect_s = settings.tolerance * scale_of(Signal::omega_s);
-  out.impacts = match_impacts(ref, c, model, limits);
+  if (all_four) out.impacts = match_impacts(ref, c, model, limits);
   const auto m0 = std::find_if(settings.full_scales.begin(), settings.full_scales.end(),
                                [](const auto& s) { return s.first == Signal::m0; });
   for (Impact& i : out.impacts.impacts) {
@@ -126,7 +129,7 @@ Comparison compare(const Trajectory& ref, const CircuitTrace& c, const GearModel
       out.worst_impact_shift = 1;
     if (i.restitution_circuit >= 0) out.restitution.push_back(i.restitution_circuit);
   }
-  if (frictionless_and_free(model.parameters())) out.momentum_drift = momentum_drift(ref, c, model.parameters());
+  if (all_four && frictionless_and_free(model.parameters())) out.momentum_drift = momentum_drift(ref, c, model.parameters());
   return out;
 }
 

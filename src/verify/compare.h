@@ -32,6 +32,7 @@ struct CompareSettings {
   double duration = 1;     ///< s, the run
   double tolerance = 0.005;  ///< value tolerance as a fraction of full scale, time tolerance as one of the run
   double grazing_depth = 0;  ///< rad beyond ε that the machine cannot resolve
+  double contact_hysteresis = 0;  ///< rad, a recording's resolution in Δφ (impacts.h)
 };
 
 /// Everything `verify` measures about a circuit run against the reference.

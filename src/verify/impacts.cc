@@ -49,8 +49,10 @@ double value_at(const std::vector<double>& t, const std::vector<double>& y, doub
   return t[j] > t[i] ? y[i] + (x - t[i]) / (t[j] - t[i]) * (y[j] - y[i]) : y[j];
 }
 
-/// The circuit's contacts: from each outward crossing of |Δφ| = ε to the next inward one.
-std::vector<Contact> circuit_contacts(const CircuitTrace& c, double eps, bool free) {
+/// The circuit's contacts: from each outward crossing of |Δφ| = ε to the
+/// next inward one that goes on below ε − hysteresis (a recording's noise
+/// crosses ε back and forth where the flanks meet).
+std::vector<Contact> circuit_contacts(const CircuitTrace& c, double eps, bool free, double hysteresis) {
   const auto& t = c.t;
   const auto& x = c.signals.at(Signal::dphi);
   const auto& m = c.signals.at(Signal::m0);
@@ -64,6 +66,10 @@ std::vector<Contact> circuit_contacts(const CircuitTrace& c, double eps, bool fr
       inside = true;
     } else if (inside && a > 0 && b <= 0) {
       out.back().end = crossing;
+    } else if (inside && a <= 0 && b > 0) {
+      out.back().end = t.back();  // back out before it went on below: still in contact
+    }
+    if (inside && b <= -hysteresis && out.back().end < t.back()) {
       out.back().released = true;
       inside = false;
     }
@@ -171,7 +177,7 @@ ImpactMatch match_impacts(const Trajectory& reference, const CircuitTrace& circu
   if (eps == 0) return out;
   const bool free = frictionless_and_free(model.parameters());
   const std::vector<Contact> ref = reference_contacts(reference, eps, free);
-  const std::vector<Contact> cir = circuit_contacts(circuit, eps, free);
+  const std::vector<Contact> cir = circuit_contacts(circuit, eps, free, limits.hysteresis);
   out.circuit_count = static_cast<int>(cir.size());
   const std::vector<int> partner = align(ref, cir, limits);
   std::vector<bool> taken(cir.size(), false);

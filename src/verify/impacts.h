@@ -41,6 +41,7 @@ struct MatchLimits {
   /// each stay within these (the tolerance times each full scale; 0: none
   /// excused this way) changes no signal a verdict judges: it is grazing.
   double torque_effect = 0, speed_effect_p = 0, speed_effect_s = 0;
+  double hysteresis = 0;      ///< rad: a circuit contact ends once |Δφ| < ε − this (a recording's noise)
 };
 
 /// Finds every contact of the reference (its events) and of the circuit

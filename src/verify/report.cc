@@ -51,7 +51,7 @@ std::string measurement_table(const VerifyResult& r) {
                                 : "";
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale{}, beta {:.6g}\n\n", r.scene,
                               level_name(r.level), 100 * r.tolerance, given, r.beta);
-  if (r.deck_scaling != "generated")
+  if (r.deck_scaling == "header" || r.deck_scaling == "options")
     t += fmt::format("deck: {}; read back as level {}, {} scaling\n\n",
                      r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
                                                 : "--deck without a gearpatch header, level and scaling "
@@ -81,7 +81,7 @@ std::string measurement_table(const VerifyResult& r) {
   for (const auto& w : r.warnings) t += "warning (settings): " + w + "\n";
   if (const std::string why = adaptive_reason(r.gear); !why.empty())
     t += "reference: adaptive solver (" + why + ")\n";
-  t += fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds);
+  t += r.source.empty() ? fmt::format("ngspice: {:.2f} s\n", r.ngspice_seconds) : r.source;
   if (r.step_halving_change)
     t += fmt::format("step check: halving the largest ngspice step ({}) moves the circuit's signals by up to "
                      "{:.3g} % of full scale ({:.2g} of the tolerance)\n",

@@ -209,6 +209,8 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
 
 }  // namespace
 
+void judge_comparison(VerifyResult& result) { judge(result); }
+
 VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator) {
   return with_scene(scene, [&] { return verify_scene(scene, options, simulator); });
 }

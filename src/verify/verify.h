@@ -81,6 +81,9 @@ struct VerifyResult {
   /// full scale, when the largest ngspice step is halved; empty otherwise.
   std::optional<double> step_halving_change;
   std::string scaling = "solved";  ///< the deck header's word: solved, solved-autoscale, paper, autoscale
+  /// Where the judged trace came from when no simulator ran: the report's
+  /// lines on a recording (verify --measured); empty for a deck's run.
+  std::string source;
   GearParameters gear;  ///< the reference model's, for the plot
   Trajectory reference;
   CircuitTrace circuit;
@@ -90,5 +93,9 @@ struct VerifyResult {
 /// simulator, reads the result back in physical units and compares it with
 /// the exact reference model.
 VerifyResult verify(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator);
+
+/// The verdict on a filled-in comparison and overloads, as verify judges a
+/// deck's run: sets failures and passed (a recorded trace is judged so too).
+void judge_comparison(VerifyResult& result);
 
 }  // namespace gearpatch::verify

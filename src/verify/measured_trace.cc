@@ -1,0 +1,205 @@
+#include "verify/measured_trace.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+
+#include "common/error.h"
+
+namespace gearpatch::verify {
+namespace {
+
+Signal signal_named(const std::string& name, const std::string& option) {
+  for (Signal s : all_signals)
+    if (to_string(s) == name) return s;
+  throw Error(fmt::format("{}: '{}' is not a signal: one of omega_p, omega_s, dphi, m0", option, name));
+}
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+/// The step between the distinct values a column takes: an 8-bit scope's
+/// quantum (the median gap, so that a value printed to three digits still
+/// reads as its step); a computed or averaged column's is tiny.
+double quantisation_step(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const double span = v.back() - v.front();
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < v.size(); ++i)
+    if (const double d = v[i] - v[i - 1]; d > 1e-9 * std::max(span, 1e-12)) gaps.push_back(d);
+  return gaps.empty() ? 0 : median(gaps);
+}
+
+/// rms about the median of the samples before `end`.
+double noise(const std::vector<double>& v, std::size_t end) {
+  if (end < 5) return 0;
+  const std::vector<double> head(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(end));
+  const double m = median(head);
+  double sum = 0;
+  for (double x : head) sum += (x - m) * (x - m);
+  return std::sqrt(sum / static_cast<double>(end));
+}
+
+/// Where one channel leaves its initial level, back along its first slope; none if it never does.
+std::optional<double> departure(const std::vector<double>& t, const std::vector<double>& y, double unit_volts,
+                                const std::string& path) {
+  const std::size_t held = std::max<std::size_t>(5, t.size() / 50);
+  if (t.size() < 2 * held) return std::nullopt;
+  const std::vector<double> head(y.begin(), y.begin() + static_cast<std::ptrdiff_t>(held));
+  const double level = median(head);
+  const double threshold = std::max({6 * noise(y, held), 1.5 * quantisation_step(y), 0.005 * unit_volts});
+  std::size_t i = 1;
+  while (i + 1 < y.size() && !(std::abs(y[i] - level) > threshold && std::abs(y[i + 1] - level) > threshold)) ++i;
+  if (i + 1 >= y.size()) return std::nullopt;
+  if (i < held)
+    throw Error(fmt::format("{}: a channel leaves its initial level at t = {:.6g} s, within the first {} samples: "
+                            "the recording begins after the run started; give --start T",
+                            path, t[i], held));
+  // Least squares through the first samples beyond the threshold (up to 6 thresholds away).
+  double st = 0, sy = 0, stt = 0, sty = 0;
+  std::size_t n = 0;
+  for (std::size_t j = i; j < y.size() && n < 20 && (n < 2 || std::abs(y[j] - level) < 6 * threshold); ++j, ++n)
+    st += t[j], sy += y[j], stt += t[j] * t[j], sty += t[j] * y[j];
+  const double slope = (n * sty - st * sy) / (n * stt - st * st);
+  const double at_i = sy / n + slope * (t[i] - st / n);
+  double start = std::isfinite(slope) && slope != 0 ? t[i] - (at_i - level) / slope : t[i];
+  return std::clamp(start, t[held - 1], t[i]);  // the level held over the first samples
+}
+
+}  // namespace
+
+double MeasuredTrace::worst_resolution() const {
+  double worst = 0;
+  for (const auto& r : resolution) worst = std::max(worst, r.fraction);
+  return worst;
+}
+
+ChannelReading parse_channel_reading(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq + 1 >= text.size())
+    throw Error(fmt::format("--channel {}: write SIGNAL=COLUMN, e.g. omega_p=CH1 (or omega_p=-CH1 for the "
+                            "inverted output)", text));
+  ChannelReading r{signal_named(text.substr(0, eq), "--channel " + text), text.substr(eq + 1), 1};
+  if (r.channel.front() == '-') r.sign = -1, r.channel.erase(0, 1);
+  if (r.channel.empty()) throw Error(fmt::format("--channel {}: no column after the sign", text));
+  r.channel = canonical_channel(r.channel);
+  return r;
+}
+
+std::pair<std::string, double> parse_channel_number(const std::string& option, const std::string& text) {
+  const auto eq = text.find('=');
+  double x = 0;
+  const char* from = eq == std::string::npos ? nullptr : text.data() + eq + 1;
+  if (!from || std::from_chars(from, text.data() + text.size(), x).ptr != text.data() + text.size() ||
+      !std::isfinite(x) || (option == "--probe" && x <= 0))
+    throw Error(fmt::format("{} {}: write CHANNEL=NUMBER, e.g. CH1={}", option, text,
+                            option == "--probe" ? "10 (positive)" : "0.05 (volts)"));
+  return {canonical_channel(text.substr(0, eq)), x};
+}
+
+double find_run_start(const std::vector<double>& t, const std::vector<std::vector<double>>& volts, double unit_volts,
+                      const std::string& path) {
+  std::optional<double> start;
+  for (const auto& y : volts)
+    if (const auto d = departure(t, y, unit_volts, path); d && (!start || *d < *start)) start = d;
+  if (!start)
+    throw Error(fmt::format("{}: no channel leaves the level it holds at the recording's start (IC): the run's "
+                            "start cannot be found; give --start T (scope seconds)", path));
+  return *start;
+}
+
+namespace {
+
+/// The readings: --channel ones first, then the watch list's for the signals they leave.
+std::vector<ChannelReading> readings_of(const MeasuredOptions& o, const std::vector<WatchedSignal>& watch) {
+  std::vector<ChannelReading> out = o.channels;
+  for (const WatchedSignal& w : watch)
+    if (std::none_of(out.begin(), out.end(), [&](const ChannelReading& r) { return r.signal == w.signal; }))
+      out.push_back({w.signal, w.channel, w.sign});
+  return out;
+}
+
+double option_value(const std::map<std::string, double>& m, const std::string& channel, double otherwise) {
+  const auto it = m.find(channel);
+  return it == m.end() ? otherwise : it->second;
+}
+
+/// Each recorded column's worst excursion beyond ±1 machine unit, its steps and noise allowed.
+std::vector<Overload> recorded_overloads(const MeasuredTrace& m) {
+  std::vector<Overload> out;
+  for (const ChannelReading& r : m.readings) {
+    const auto& mu = m.machine_units.at(r.signal);
+    Overload worst{r.channel + " (" + to_string(r.signal) + ")", 0, 0};
+    for (std::size_t i = 0; i < m.trace.t.size(); ++i)
+      if (std::abs(mu[i]) > std::abs(worst.value)) worst.t = m.trace.t[i], worst.value = mu[i];
+    // A recording's steps and noise reach a little beyond a signal that touches 1 MU.
+    const auto res = std::find_if(m.resolution.begin(), m.resolution.end(), [&](const auto& x) { return x.signal == r.signal; });
+    if (std::abs(worst.value) > 1 + res->fraction + 1e-6) out.push_back(worst);
+  }
+  return out;
+}
+
+}  // namespace
+
+MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o, const circuit::Circuit& circuit,
+                            const std::vector<WatchedSignal>& watch, double duration) {
+  MeasuredTrace m;
+  m.format = rec.format, m.time_from = rec.time_from, m.samples = rec.t.size();
+  const double unit = circuit.machine.unit_volts;
+  std::vector<std::vector<double>> machine_volts;  // per reading, sign not yet applied
+  for (const ChannelReading& r : readings_of(o, watch)) {
+    const ScopeColumn* column = rec.find(r.channel);
+    if (!column) {
+      m.missing.push_back(r.signal);
+      continue;
+    }
+    const double probe = option_value(o.probe, column->channel, 1), offset = option_value(o.offset, column->channel, 0);
+    std::vector<double> v = column->volts;
+    for (double& x : v) x = probe * x - offset;
+    m.readings.push_back({r.signal, column->channel, r.sign});
+    machine_volts.push_back(std::move(v));
+  }
+  for (const auto& [option, values] : {std::pair{"--probe", &o.probe}, std::pair{"--offset", &o.offset}})
+    for (const auto& entry : *values)
+      if (!rec.find(entry.first))
+        throw Error(fmt::format("{} {}: {} has no such column", option, entry.first, o.path));
+  if (m.readings.empty()) {
+    std::string names;
+    for (const ScopeColumn& c : rec.columns) names += (names.empty() ? "" : ", ") + c.channel;
+    throw Error(fmt::format("{}: none of the watched channels is recorded (the file has {}); map them with "
+                            "--channel SIGNAL=COLUMN", o.path, names));
+  }
+  m.start_given = o.start.has_value();
+  m.start = o.start ? *o.start : find_run_start(rec.t, machine_volts, unit, o.path);
+  const std::size_t before = static_cast<std::size_t>(std::lower_bound(rec.t.begin(), rec.t.end(), m.start) - rec.t.begin());
+  for (std::size_t k = 0; k < m.readings.size(); ++k) {
+    const auto& v = machine_volts[k];
+    const double step = quantisation_step(v), sigma = noise(v, before);
+    m.resolution.push_back({m.readings[k].signal, m.readings[k].channel, step, sigma,
+                            std::max(step, 2 * sigma) / unit});
+  }
+  const double end = m.start + circuit.beta * duration * (1 + 1e-9);
+  for (std::size_t i = before; i < rec.t.size(); ++i) {
+    m.machine_t.push_back(rec.t[i] - m.start);
+    for (std::size_t k = 0; k < m.readings.size(); ++k)
+      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * machine_volts[k][i] / unit);
+    if (rec.t[i] > end) continue;
+    m.trace.t.push_back((rec.t[i] - m.start) / circuit.beta);
+    for (std::size_t k = 0; k < m.readings.size(); ++k) {
+      const Signal s = m.readings[k].signal;
+      const double mu = m.readings[k].sign * machine_volts[k][i] / unit;
+      m.trace.signals[s].push_back(mu * circuit.probes.at(s).full_scale);
+    }
+  }
+  if (m.trace.t.size() < 2)
+    throw Error(fmt::format("{}: fewer than two samples between the run's start (t = {:.6g} s) and its end", o.path,
+                            m.start));
+  m.span = m.trace.t.back();
+  m.overloads = recorded_overloads(m);
+  return m;
+}
+
+}  // namespace gearpatch::verify

@@ -1,0 +1,149 @@
+#include "verify/measured_verify.h"
+
+#include <algorithm>
+#include <fmt/format.h>
+
+#include "circuit/circuit.h"
+#include "model/gear_model.h"
+#include "scaling/patch.h"
+#include "scene/scene_inputs.h"
+#include "solver/integrate.h"
+#include "verify/diagnosis.h"
+#include "verify/trace_likeness.h"
+
+namespace gearpatch::verify {
+namespace {
+
+/// The reference up to `end` (s): a recording shorter than the run is judged on what it holds.
+Trajectory cut(const Trajectory& full, double end) {
+  Trajectory t = full;
+  const auto after = [end](const auto& x) { return x.t > end; };
+  std::erase_if(t.samples, after);
+  std::erase_if(t.events, after);
+  std::erase_if(t.event_samples, after);
+  std::erase_if(t.contacts, [end](const ContactRecord& c) { return c.start > end; });
+  return t;
+}
+
+/// Each signal's reference peak in machine units: where the watch list sets its scale.
+std::vector<std::pair<Signal, double>> peaks_mu(const Trajectory& ref, const circuit::Circuit& c) {
+  std::vector<std::pair<Signal, double>> out;
+  for (Signal s : all_signals) out.emplace_back(s, peak(ref.peaks, s).value / c.probes.at(s).full_scale);
+  return out;
+}
+
+void refuse_finer_than_resolution(const MeasuredTrace& m, double tolerance, const std::string& path) {
+  for (const ChannelResolution& r : m.resolution)
+    if (r.fraction > tolerance)
+      throw Error(fmt::format("tolerance {:.3g} %: finer than {}'s own resolution on {} ({:.3g} % of the machine "
+                              "unit: steps of {:.4g} V, noise {:.4g} V rms); give --tolerance {:.2g}% or more, or "
+                              "record at a finer volts per division",
+                              100 * tolerance, path, r.channel, 100 * r.fraction, r.step_volts, r.noise_volts,
+                              100 * r.fraction * 1.05));
+}
+
+/// The comparison of the recording with the reference, as verify compares a deck's run.
+void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::Circuit& circuit, const Patch& patch,
+                       const GearModel& model, double run_duration) {
+  // A recording that ends before the run is judged over what it holds.
+  const double judged = m.span < run_duration * (1 - r.tolerance) ? m.span : run_duration;
+  const Trajectory reference = judged < run_duration ? cut(r.reference, judged) : r.reference;
+  r.duration = judged;
+  r.circuit = m.trace;
+  CompareSettings settings;
+  for (const ChannelReading& c : m.readings)
+    settings.full_scales.emplace_back(c.signal, circuit.probes.at(c.signal).full_scale);
+  std::sort(settings.full_scales.begin(), settings.full_scales.end());
+  settings.duration = judged;
+  settings.tolerance = r.tolerance;
+  // Δφ's resolution in the recording: noise and steps around ε neither make nor split a contact.
+  const auto dphi = std::find_if(m.resolution.begin(), m.resolution.end(),
+                                 [](const ChannelResolution& x) { return x.signal == Signal::dphi; });
+  const double dphi_resolution =
+      dphi == m.resolution.end() ? 0 : 2 * dphi->fraction * circuit.probes.at(Signal::dphi).full_scale;
+  settings.grazing_depth =
+      std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
+  settings.contact_hysteresis = dphi_resolution;
+  r.comparison = compare(reference, r.circuit, model, settings);
+  r.overloads = m.overloads;
+}
+
+}  // namespace
+
+MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options, const std::string& text,
+                               const MeasuredOptions& mo) {
+  return with_scene(scene, [&] {
+    MeasuredVerify out;
+    VerifyResult& r = out.result;
+    r.scene = scene.name;
+    r.level = circuit::Level::hardware;  // a real machine
+    r.duration = scene.duration;
+    r.tolerance = options.tolerance.value_or(default_tolerance(r.level));
+    r.deck_scaling = "measured";
+    const ScalingInput input = scaling_input(scene);
+    const GearModel model(input.gear);
+    r.gear = input.gear;
+    TrajectoryRecorder recorder(model, r.reference);
+    const double step = scene.output_step ? *scene.output_step
+                                          : std::min(scene.duration / options.transient.output_points,
+                                                     run_spec(scene).output_step);
+    const PeakRun run = run_reference(input, {{step, recorder}});
+    if (run.failure) throw *run.failure;
+    PatchOptions patch_options;
+    patch_options.comparator_offset = circuit::comparator_offset(r.level);
+    patch_options.lock_catch = false;
+    patch_options.autoscale = options.autoscale;
+    if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
+    const Patch patch = make_patch(input, patch_options, run);
+    r.warnings = patch.warnings;
+    const circuit::Circuit circuit = circuit::build_circuit(patch, r.level);
+    r.beta = circuit.beta, r.autoscaled = circuit.autoscaled, r.scaling = circuit.scaling;
+
+    out.watch = provisional_watch_list(circuit, peaks_mu(r.reference, circuit));
+    const ScopeRecording recording = read_scope_csv(text, mo.path, mo.format);
+    out.measured = measure_trace(recording, mo, circuit, out.watch, scene.duration);
+    const MeasuredTrace& m = out.measured;
+    refuse_finer_than_resolution(m, r.tolerance, mo.path);
+
+    compare_recording(r, m, circuit, patch, model, scene.duration);
+    judge_comparison(r);
+    if (!r.passed) {
+      r.diagnosis = what_the_trace_looks_like(m, r.reference, model, circuit, scene.duration, r.tolerance);
+      // The rules that read the run itself; the rest measure changed decks, which a recording has none of.
+      for (const std::string& d : diagnose(r, patch))
+        if (d.rfind("no rule applies", 0) != 0) r.diagnosis.push_back(d);
+    }
+    r.source = measured_notes(out, mo.path);
+    return out;
+  });
+}
+
+std::string measured_notes(const MeasuredVerify& v, const std::string& path) {
+  const MeasuredTrace& m = v.measured;
+  std::string t = fmt::format("measured: {} ({} format, {} samples, time from the {}); run start at t = {:.6g} s "
+                              "on the scope ({})\n",
+                              path, m.format, m.samples, m.time_from, m.start,
+                              m.start_given ? "--start" : "found: the signals leave their initial values");
+  for (const ChannelResolution& r : m.resolution) {
+    const auto watched = std::find_if(v.watch.begin(), v.watch.end(), [&](const auto& w) { return w.signal == r.signal; });
+    const auto reading = std::find_if(m.readings.begin(), m.readings.end(), [&](const auto& x) { return x.signal == r.signal; });
+    t += fmt::format("  {:<8} {:<4} sign {:+g}  resolution {:.3g} % of 1 MU (steps {:.4g} V, noise {:.3g} V rms){}\n",
+                     to_string(r.signal), r.channel, reading->sign, 100 * r.fraction, r.step_volts, r.noise_volts,
+                     watched == v.watch.end() ? ""
+                                              : fmt::format("; sheet: {} at {:g} V/div", watched->channel,
+                                                            watched->volts_per_div));
+  }
+  if (!m.missing.empty()) {
+    std::string names;
+    for (Signal s : m.missing) names += (names.empty() ? "" : ", ") + to_string(s);
+    t += fmt::format("  not recorded: {} (judged on the channels present{})\n", names,
+                     v.result.comparison.impacts.impacts.empty() && v.result.comparison.impacts.circuit_count == 0
+                         ? "; impacts are matched only with all four"
+                         : "");
+  }
+  if (v.result.duration < v.result.reference.samples.back().t * (1 - 1e-9))
+    t += fmt::format("  the recording covers {:.6g} s of the run: judged on that\n", v.result.duration);
+  return t;
+}
+
+}  // namespace gearpatch::verify
