@@ -14,6 +14,7 @@
 #include "common/process.h"
 #include "scene/scene.h"
 #include "scaling/patch.h"
+#include "patching/sheet_deck.h"
 #include "spice/deck_reader.h"
 #include "runs/pool.h"
 #include "tolerance/error_budget.h"
@@ -102,6 +103,8 @@ int run_verify(const std::vector<std::string>& args) {
        "*# commands or .include/.lib is refused unless --allow-control")
       ("no-budget", "at the hardware level without --tolerance: judge at the hardware default (2%) instead of "
        "the scene's predicted error budget (see gearpatch budget), and skip its runs")
+      ("patch", po::value<std::string>(), "run the patch sheet SHEET.json (gearpatch patch --json) as wired: "
+       "a deck built from its elements, settings and numbered wires alone, at the sheet's level unless --level")
       ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
        "a plot that cannot be made is a warning, the verdict stands")
@@ -120,7 +123,8 @@ int run_verify(const std::vector<std::string>& args) {
                        "ends short of the run (the deck is kept), 4: internal error.",
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
-                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%"},
+                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",
+                        "gearpatch verify scenes/bild5b.ini --patch bild5b.sheet.json"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "verify");
@@ -137,6 +141,15 @@ int run_verify(const std::vector<std::string>& args) {
     o.deck_header = spice::read_deck_header(*o.deck_text, path);
     if (o.deck_header) hold_to_deck(vm, *o.deck_header, path, o);
   }
+  std::string machine = chosen_machine(vm);
+  if (vm.count("patch")) {
+    const auto level = vm["level"].defaulted() ? std::nullopt : std::optional(o.level);
+    const patching::SheetRun run = patching::sheet_run(vm["patch"].as<std::string>(), level, o.transient);
+    o.deck_text = run.deck;
+    o.deck_header = spice::read_deck_header(run.deck, vm["patch"].as<std::string>());
+    hold_to_deck(vm, *o.deck_header, vm["patch"].as<std::string>(), o);
+    if (!vm.count("machine")) machine = run.machine;
+  }
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
   const std::string report_to = main_output(vm, {"json", "plot", "keep-deck"});
@@ -148,7 +161,7 @@ int run_verify(const std::vector<std::string>& args) {
     outputs.add("--keep-deck", vm["keep-deck"].as<std::string>());
     o.limits.keep_deck_as = vm["keep-deck"].as<std::string>();
   }
-  const Scene scene = load_scene(file, chosen_machine(vm));
+  const Scene scene = load_scene(file, machine);
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   // At the hardware level the machine's own tolerances set the bar, unless the user gave one.
