@@ -49,12 +49,17 @@ void options(Allocation& a, const Wiring& w) {
         "jacks with one wire first; elements labelled 2:… are on machine 2, and {} numbered wires cross between "
         "the panels (marked \"crosses\")", a.machines_needed, crossing));
   } else if (a.machines_needed != 1) {
-    a.options.push_back(fmt::format("more elements than {} chained machine{} hold", chain, chain > 1 ? "s" : ""));
+    std::string none;
+    for (const Count& c : a.counts)
+      if (c.needed > 0 && c.available == 0) none += (none.empty() ? "" : ", ") + element_name(c.kind);
+    a.options.push_back(none.empty()
+                            ? fmt::format("more elements than {} chained machine{} hold", chain, chain > 1 ? "s" : "")
+                            : fmt::format("no number of chained machines holds it: the machine has no {}", none));
   }
   if (!a.fits())
     for (const std::string& other : machine_names())
       if (other != a.machine.name && other != "generic")
-        a.options.push_back(fmt::format("a machine with more elements: gearpatch patch {} --machine {}", a.scene, other));
+        a.options.push_back(fmt::format("a machine with more elements: gearpatch patch … --machine {}", other));
 }
 
 /// The allocation's counts, fit and options from the wiring's elements.

@@ -439,6 +439,8 @@ class Wirer {
     p.parameter = b.parameter;
     if (p.parameter.size() > 2 && p.parameter.front() == '{')  // a setting: the unit is set to its value
       p.parameter = fmt::format("{:.5g}", params_.at(parse_setting(p.parameter.substr(1, p.parameter.size() - 2)).value()));
+    else if (!p.parameter.empty())
+      p.parameter = fmt::format("{:.5g}", std::stod(p.parameter));
     if (b.block == circuit::BlockKind::halfwave) p.node.clear();
     const std::string label = p.label;
     if (b.block == circuit::BlockKind::halfwave) {
