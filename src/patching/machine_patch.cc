@@ -45,9 +45,9 @@ void options(Allocation& a, const Wiring& w) {
       if (from && to && from->machine != to->machine) ++crossing;
     }
     a.options.push_back(fmt::format(
-        "daisy-chain {} machines: machine 1 leads (it sets mode and OP time for all); join the machines' ground "
-        "jacks with one wire first; elements labelled 2:… are on machine 2, and {} numbered wires cross between "
-        "the panels (marked \"crosses\")", a.machines_needed, crossing));
+        "daisy-chain {} machines: machine 1 leads (it sets mode and OP time for all); wire 1 joins the machines' "
+        "grounds; elements labelled 2:… are on machine 2, and {} numbered wires cross between the panels (marked "
+        "\"crosses between machines\")", a.machines_needed, crossing));
   } else if (a.machines_needed != 1) {
     std::string none;
     for (const Count& c : a.counts)

@@ -72,7 +72,7 @@ std::string wires(const Wiring& w) {
   for (const Wire& x : w.wires) {
     const Part* from = w.find(x.from.part);
     const Part* to = w.find(x.to.part);
-    const bool crosses = from && to && from->machine != to->machine;
+    const bool crosses = (from && to && from->machine != to->machine) || x.to.part.find(":GND") != std::string::npos;
     text += fmt::format("  {:>3}. {:<16} → {:<16}{}{}\n", x.number, x.from.name(), x.to.name(),
                         x.carries.empty() ? "" : "  " + x.carries, crosses ? "  (crosses between machines)" : "");
   }

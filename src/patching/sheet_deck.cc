@@ -34,6 +34,11 @@ std::string spice_name(const std::string& text) {
   return s;
 }
 
+/// Machine 1's ground jack "GND", another chained machine's "2:GND".
+bool is_ground(const std::string& part) {
+  return part == "GND" || (part.size() > 4 && part.compare(part.size() - 4, 4, ":GND") == 0);
+}
+
 bool is_amplifier(const Part& p) { return p.kind == "integrator" || p.kind == "summer" || p.kind == "inverter"; }
 
 /// The machine's comparator with its own switch: A + B > 0 routes >0 to OUT,
@@ -94,7 +99,7 @@ class Nets {
     const Jack r = root(j);
     for (const auto& [jack, parent] : parent_) {
       if (root(jack) != r) continue;
-      if (jack.part == "GND") return 0;
+      if (is_ground(jack.part)) return 0;
       if (jack.part == "REF") return jack.jack == "+1" ? 1 : -1;
       if (jack.jack == "out")
         if (const Part* p = w_.find(jack.part); p && p->kind == "potentiometer")
@@ -105,7 +110,7 @@ class Nets {
 
  private:
   void check_jack(const Wire& wire, const Jack& j) const {
-    if (j.part == "GND") return;
+    if (is_ground(j.part)) return;
     if (j.part == "REF") {
       if (j.jack != "+1" && j.jack != "-1")
         throw Error(fmt::format("wire {}: the references are REF +1 and REF -1, not {}", wire.number, j.name()));
@@ -134,7 +139,7 @@ class Nets {
   }
 
   bool drives(const Jack& j) const {
-    if (j.part == "REF" || j.part == "GND") return true;
+    if (j.part == "REF" || is_ground(j.part)) return true;
     const Part* p = w_.find(j.part);
     if (!p) return false;
     const auto outs = output_jacks(*p);
@@ -149,14 +154,14 @@ class Nets {
       if (!drives(jack)) continue;
       const Jack r = root(jack);
       if (auto it = driver.find(r); it != driver.end() && !(it->second == jack) &&
-                                    !(it->second.part == jack.part && it->second.part == "GND"))
+                                    !(is_ground(it->second.part) && is_ground(jack.part)))
         throw Error(fmt::format("the wires join two outputs, {} and {}: never join outputs", it->second.name(),
                                 jack.name()));
       driver[r] = jack;
     }
     for (const auto& [r, jack] : driver) {
       std::string name = "n_" + spice_name(jack.part + "_" + jack.jack);
-      if (jack.part == "GND") name = "0";
+      if (is_ground(jack.part)) name = "0";
       else if (jack.part == "REF") name = jack.jack == "+1" ? "ref_p1" : "ref_n1";
       else if (const Part* p = w_.find(jack.part); p && !p->node.empty()) name = spice_name(p->node);
       names_[r] = name;

@@ -95,6 +95,7 @@ class Wirer {
     for (const auto& a : c_.amplifiers) inputs(a);
     initial_conditions();
     watch();
+    common_ground();
     return std::move(w_);
   }
 
@@ -493,6 +494,18 @@ class Wirer {
       part(out_of(node).part).setting = value;
       wire(from, {out_of(node).part, "IC"});
     }
+  }
+
+  /// Chained machines share one ground: the first wire joins machine 1's
+  /// ground jack to each other machine's.
+  void common_ground() {
+    int machines = 1;
+    for (const Part& p : w_.parts) machines = std::max(machines, p.machine);
+    std::vector<Wire> grounds;
+    for (int m = 2; m <= machines; ++m) grounds.push_back({0, ground, {fmt::format("{}:GND", m), ""}, "0 (common ground)"});
+    if (grounds.empty()) return;
+    w_.wires.insert(w_.wires.begin(), grounds.begin(), grounds.end());
+    for (std::size_t k = 0; k < w_.wires.size(); ++k) w_.wires[k].number = static_cast<int>(k) + 1;
   }
 
   /// One oscilloscope channel per compared signal at 1-2-5 volts per
