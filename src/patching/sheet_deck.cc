@@ -125,6 +125,10 @@ class Nets {
   }
 
   void check_parts() const {
+    for (const Part& p : w_.parts)
+      if (p.machine > 1 && !wired({fmt::format("{}:GND", p.machine), ""}))
+        throw Error(fmt::format("{} is on machine {}, whose ground {}:GND is open: no wire joins it to GND of "
+                                "machine 1", p.label, p.machine, p.machine));
     for (const Part& p : w_.parts) {
       for (const std::string& jack : required_jacks(p))
         if (!wired({p.label, jack})) throw Error(fmt::format("{} {} is open: no wire ends there", p.label, jack));
