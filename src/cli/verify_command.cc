@@ -123,8 +123,7 @@ int run_verify(const std::vector<std::string>& args) {
                        "ends short of the run (the deck is kept), 4: internal error.",
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
-                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",
-                        "gearpatch verify scenes/bild5b.ini --patch bild5b.sheet.json"},
+                        "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "verify");

@@ -244,11 +244,24 @@ class Wirer {
     } else if (!b.parameter.empty()) {
       offset = std::stod(b.parameter);
     }
+    if (on_twist(b)) return constant(-offset, "a_plus_2h", fmt::format(
+        "contact threshold on Δφ: a + 2 × hysteresis = {:.5g} MU, into B (settings' {} is the threshold on Δφ')",
+        offset, name));
     return constant(-offset, name, fmt::format("threshold {} = {:.5g} MU of the comparators, into B", name, offset));
   }
 
+  /// A contact comparator that watches the twist itself against the dead
+  /// zone's threshold (the hardware circuit's choice), not Δφ' against δ: its
+  /// threshold is not the settings' delta, so the sheet gives it its own name.
+  static bool on_twist(const circuit::FunctionBlock& b) {
+    return (b.nodes[0] == "x" || b.nodes[0] == "x_n") && b.parameter.size() > 2 && b.parameter.front() == '{';
+  }
+
   void comparator(const circuit::FunctionBlock& b) {
-    const Part& p = take(ElementKind::comparator, b.comment);
+    std::string role = b.comment;
+    if (on_twist(b))
+      if (const auto at = role.find(b.parameter); at != std::string::npos) role.replace(at, b.parameter.size(), "a + 2h");
+    const Part& p = take(ElementKind::comparator, role);
     uses_[b.nodes[1]] = {p.label, b.nodes[0], {}, 0};
     const std::string ctrl = b.nodes[1];
     later_.push_back([this, ctrl, b] {
