@@ -64,6 +64,7 @@ std::vector<std::pair<std::string, std::string>> scene_files() {
   for (const auto& s : testing::example_scenes()) files.emplace_back(s, testing::scene_path(s));
   for (const char* d : {"conveyor", "startup", "reversal", "capped", "stribeck"})
     files.emplace_back(std::string("drive/") + d, testing::scene_path(std::string("drive/") + d));
+  files.emplace_back("extremes/lock-zero-backlash", testing::scene_path("extremes/lock-zero-backlash"));  // the lock latch
   return files;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <functional>
 #include <set>
+#include <tuple>
 
 #include "common/error.h"
 #include "machine/machine_file.h"
@@ -305,6 +306,8 @@ class Wirer {
       if (has(ElementKind::comparator)) return comparator_abs(b);
     }
     if (b.block == circuit::BlockKind::halfwave && has(ElementKind::comparator)) return comparator_halfwave(b);
+    if (b.block == circuit::BlockKind::halfwave && has(ElementKind::diode) && has(ElementKind::summer))
+      return diode_halfwave(b);
     unit(b);
   }
 
@@ -332,6 +335,30 @@ class Wirer {
         wire(ground, {label, "B"});
         wire(above, {label, ">0"});
         wire(below, {label, "<0"});
+      }
+    });
+  }
+
+  /// pos = −max(in, 0) and neg = −min(in, 0): each side a diode into a
+  /// summer's input, whose virtual ground lets it pass only its side's
+  /// current (pos: anode at in; neg: cathode at in); an output the program
+  /// leaves unused takes no diode and no summer.
+  void diode_halfwave(const circuit::FunctionBlock& b) {
+    std::vector<std::tuple<std::string, std::string, bool>> sides;  // summer, diode, anode at in
+    for (const bool pos : {true, false}) {
+      const std::string& node = b.nodes[pos ? 1 : 2];
+      if (!used(node)) continue;
+      const std::string what = pos ? "pos = −max(in, 0)" : "neg = −min(in, 0)";
+      const std::string sum = take(ElementKind::summer, b.comment + ": " + what, node).label;
+      const std::string d = take(ElementKind::diode, pos ? "half-wave: passes in > 0, anode at in"
+                                                         : "half-wave: passes in < 0, cathode at in").label;
+      part(d).signal = (pos ? "max(" : "min(") + signal_of(b.nodes[0]) + ", 0)";
+      sides.emplace_back(sum, d, pos);
+    }
+    later_.push_back([this, b, sides] {
+      for (const auto& [sum, d, pos] : sides) {
+        wire(out_of(b.nodes[0]), {d, pos ? "anode" : "cathode"});
+        wire({d, pos ? "cathode" : "anode"}, input_jack(sum, 1));
       }
     });
   }
