@@ -40,6 +40,27 @@ std::vector<std::string> examples_of(const std::string& help) {
   return examples;
 }
 
+/// An example as the shell runs it, each of its commands ("gearpatch patch …
+/// && gearpatch verify …") by the binary under test.
+std::string with_binary(std::string command) {
+  command.replace(0, std::string("gearpatch ").size(), kBinary + " ");
+  const std::string next = " && gearpatch ";
+  for (auto at = command.find(next); at != std::string::npos; at = command.find(next, at + 1))
+    command.replace(at, next.size(), " && " + kBinary + " ");
+  return command;
+}
+
+/// The files an example writes (-o, --json, --picture, --dot), "-" (stdout) left out.
+std::vector<std::string> files_written(const std::string& example) {
+  std::vector<std::string> files;
+  std::istringstream words(example);
+  for (std::string word, file; words >> word;)
+    if ((word == "-o" || word == "--out" || word == "--json" || word == "--picture" || word == "--dot") &&
+        words >> file && file != "-")
+      files.push_back(file);
+  return files;
+}
+
 }  // namespace
 
 TEST_CASE("--tolerance is a percentage with its unit; a bare number is refused", "[common][cli]") {
@@ -98,7 +119,9 @@ TEST_CASE("every --help ends with examples that run as written", "[common][cli][
   std::string help;
   REQUIRE(dir.run("--help", help) == 0);
   std::vector<std::string> commands = {""};
-  for (const char* name : {"simulate", "settings", "netlist", "verify", "bench", "reduce"}) {
+  // the files the examples name as input: a machine profile of one's own
+  fs::copy_file(testing::source_path("machines/the-analog-thing.ini"), dir.path / "my-machine.ini");
+  for (const char* name : {"simulate", "settings", "netlist", "verify", "bench", "reduce", "patch"}) {
     CHECK_THAT(help, Catch::Contains(std::string("  ") + name + " "));
     commands.push_back(name);
   }
@@ -111,7 +134,18 @@ TEST_CASE("every --help ends with examples that run as written", "[common][cli][
     for (const std::string& example : examples) {
       INFO(example);
       std::string output;
-      CHECK(dir.run(example.substr(std::string("gearpatch ").size()) + " 2>&1", output) == 0);
+      const int status = testing::run_command("cd " + dir.path.string() + " && (" + with_binary(example) + ") 2>&1", output);
+      INFO(output);
+      CHECK(status == 0);
+      for (const std::string& file : files_written(example)) CHECK(fs::exists(dir.path / file));
     }
   }
+  // the sheet-runs path: a sheet written by patch, run by verify --patch
+  REQUIRE(dir.run("patch --help", help) == 0);
+  bool sheet_run = false;
+  for (const std::string& example : examples_of(help))
+    sheet_run = sheet_run || (example.find("--json") != std::string::npos &&
+                              example.find("&& gearpatch verify") != std::string::npos &&
+                              example.find("--patch") != std::string::npos);
+  CHECK(sheet_run);
 }
