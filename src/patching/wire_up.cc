@@ -299,8 +299,8 @@ class Wirer {
     };
     if (b.block == circuit::BlockKind::dead_zone && has(ElementKind::diode)) return diode_dead_zone(b);
     if (b.block == circuit::BlockKind::dead_zone && has(ElementKind::comparator)) return comparator_dead_zone(b);
-    if (b.block == circuit::BlockKind::limiter && has(ElementKind::comparator) && std::stod(b.parameter) <= 0.02)
-      return comparator_limiter(b);
+    if (b.block == circuit::BlockKind::limiter && has(ElementKind::comparator))
+      return std::stod(b.parameter) <= 0.02 ? comparator_limiter(b) : comparator_wide_limiter(b);
     if (b.block == circuit::BlockKind::abs && !negated(b.nodes[0]).empty()) {
       if (has(ElementKind::diode) && has(ElementKind::summer)) return diode_abs(b);
       if (has(ElementKind::comparator)) return comparator_abs(b);
@@ -446,6 +446,50 @@ class Wirer {
     });
   }
 
+  /// −clip(in/band) for a band wider than a comparator's step (the Stribeck
+  /// generator's, the hardware lock characteristic): two comparators clip in
+  /// to ±band (each threshold and each clip level a potentiometer on a
+  /// reference), a summer's weight-10 inputs amplify the clipped signal by
+  /// 1/band, so no amplifier leaves ±1 MU.
+  void comparator_wide_limiter(const circuit::FunctionBlock& b) {
+    const std::string upper = take(ElementKind::comparator, b.comment + ": in above +band gives +band").label;
+    const std::string lower = take(ElementKind::comparator, b.comment + ": in below −band gives −band, else in").label;
+    const std::string gain = take(ElementKind::summer, b.comment, b.nodes[1]).label;
+    part(upper).signal = "clip(" + signal_of(b.nodes[0]) + ", ±band)";
+    part(lower).signal = "max(" + signal_of(b.nodes[0]) + ", −band)";
+    later_.push_back([this, b, upper, lower, gain] {
+      const double band = std::stod(b.parameter), g = 1 / band;
+      const int inputs = static_cast<int>(std::ceil(g / 10 - 1e-9));
+      const std::string role = fmt::format("limiter band {:.5g} MU", band);
+      const Jack in = out_of(b.nodes[0]);
+      const Jack plus = constant(band, "band", role), minus = constant(-band, "band", role);
+      wire(in, {upper, "A"});
+      wire(minus, {upper, "B"});
+      wire(plus, {upper, ">0"});
+      wire({lower, "OUT"}, {upper, "<0"});
+      wire(in, {lower, "A"});
+      wire(plus, {lower, "B"});
+      wire(in, {lower, ">0"});
+      wire(minus, {lower, "<0"});
+      const double setting = g / (10.0 * inputs);
+      const Jack scaled = is_one(setting) ? Jack{upper, "OUT"}
+                                          : potentiometer({upper, "OUT"}, "gain", setting, setting,
+                                                          fmt::format("limiter gain 1/band = {:.5g}: {:.5g} into {} "
+                                                                      "weight-10 input{}", g, setting, inputs,
+                                                                      inputs > 1 ? "s" : ""));
+      for (int k = 0; k < inputs; ++k) wire(scaled, input_jack(gain, 10));
+      if (const int offered = weight_ten_inputs(); inputs > offered)
+        w_.notes.push_back(fmt::format("{} takes {} weight-10 inputs for the gain 1/band = {:.5g}; the machine's "
+                                       "summer has {}: the gain needs a second stage", gain, inputs, g, offered));
+    });
+  }
+
+  int weight_ten_inputs() const {
+    const auto type = c_.machine.elements.find(ElementKind::summer);
+    if (type == c_.machine.elements.end()) return 0;
+    return static_cast<int>(std::count(type->second.inputs.begin(), type->second.inputs.end(), 10));
+  }
+
   /// −|in| = −(relu(in) + relu(−in)): each diode passes its side's current into the summer.
   void diode_abs(const circuit::FunctionBlock& b) {
     const std::string sum = take(ElementKind::summer, b.comment, b.nodes[1]).label;
@@ -517,6 +561,8 @@ class Wirer {
         wire(from, {label, "in"});
         wire(decision(in.switched_by), {label, "set"});
         wire(decision(in.released_by), {label, "reset"});
+        w_.notes.push_back(fmt::format("{} is drawn as one lock latch unit (in, set, reset, out): this sheet does not "
+                                       "draw its elements inside", label));
         from = {label, "out"};
       } else if (!in.switched_by.empty()) {
         from = switched(in.switched_by, from);
