@@ -44,6 +44,16 @@ std::vector<std::string> examples_of(const std::string& help) {
   return examples;
 }
 
+/// An example as the shell runs it, each of its commands ("gearpatch patch …
+/// && gearpatch verify …") by the binary under test.
+std::string with_binary(std::string command) {
+  command.replace(0, std::string("gearpatch ").size(), kBinary + " ");
+  const std::string next = " && gearpatch ";
+  for (auto at = command.find(next); at != std::string::npos; at = command.find(next, at + 1))
+    command.replace(at, next.size(), " && " + kBinary + " ");
+  return command;
+}
+
 /// The commands `gearpatch --help` lists.
 std::vector<std::string> commands_of(const std::string& help) {
   std::vector<std::string> names;
@@ -142,7 +152,10 @@ TEST_CASE("every --help ends with examples that run as written and make the file
       std::string output;
       const auto job_list = example.find("--job-list ");
       if (job_list != std::string::npos) fs::remove_all(dir.path / outputs_of(example.substr(job_list)).front());
-      CHECK(dir.run(example.substr(std::string("gearpatch ").size()) + " 2>&1", output) == 0);
+      const int status =
+          testing::run_command("cd " + dir.path.string() + " && (" + with_binary(example) + ") 2>&1", output);
+      INFO(output);
+      CHECK(status == 0);
       for (const std::string& file : outputs_of(example)) CHECK(fs::exists(dir.path / file));
       if (merged && job_list != std::string::npos)  // the help's GNU Parallel line, on this machine
         CHECK(testing::run_command("cd " + dir.path.string() + " && parallel --will-cite -S : < " +
@@ -150,4 +163,12 @@ TEST_CASE("every --help ends with examples that run as written and make the file
                                    output) == 0);
     }
   }
+  // the sheet-runs path: a sheet written by patch, run by verify --patch
+  REQUIRE(dir.run("patch --help", help) == 0);
+  bool sheet_run = false;
+  for (const std::string& example : examples_of(help))
+    sheet_run = sheet_run || (example.find("--json") != std::string::npos &&
+                              example.find("&& gearpatch verify") != std::string::npos &&
+                              example.find("--patch") != std::string::npos);
+  CHECK(sheet_run);
 }

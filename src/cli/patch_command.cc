@@ -17,22 +17,32 @@ int run_patch(const std::vector<std::string>& args) {
       ("picture", po::value<std::string>(), "draw the patch in analog-computer notation to FILE (.svg or .png, "
        "Graphviz dot)")
       ("dot", po::value<std::string>(), "write the Graphviz source of the picture to FILE")
-      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom (as settings --autoscale)");
+      ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom (as settings --autoscale)")
+      ("level", po::value<std::string>()->default_value("hardware"), "the level the comparator thresholds and "
+       "bands are set for: hardware (the machine a person wires) or ideal (the sheet the ideal run checks)");
   add_output_options(options, "the patch sheet", "the patch");
   add_machine_option(options);
+  add_scaling_option(options);
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch patch SCENE [--machine NAME|FILE] [-o SHEET] [--json FILE] "
-                       "[--picture FILE.svg|.png]\n\n"
+                       "[--picture FILE.svg|.png] [--scaling solved|paper] [--autoscale]\n\n"
                        "Allocates the scene's circuit onto the machine's elements and writes the patch\n"
                        "sheet: whether it fits (counts per element against the machine; if not, what is\n"
                        "short and the options), the k0 switch, mode and OP time, every potentiometer with\n"
                        "its label and setting, every initial condition, the numbered connections and\n"
-                       "where to watch which signal. Exit 0 also when it does not fit (the sheet says so).",
+                       "the oscilloscope's channels, volts per division, time base and trigger. Every wire a\n"
+                       "person makes is a numbered connection from an output socket to an input socket,\n"
+                       "inside the dead zone and the comparators too.\n\n"
+                       "The sheet runs: `gearpatch verify SCENE --patch SHEET.json` builds a deck from the\n"
+                       "sheet's elements, settings and numbered wires alone and compares it with the\n"
+                       "reference like any deck. Exit 0 also when it does not fit (the sheet says so).",
                        options,
                        {"gearpatch patch scenes/bild5b.ini --machine the-analog-thing",
                         "gearpatch patch scenes/bild6c.ini --machine model-1 --json bild6c.patch.json",
                         "gearpatch patch scenes/bild5b.ini --machine the-analog-thing --picture bild5b.svg",
-                        "gearpatch patch scenes/bild5a.ini --machine machines/classic.ini -o bild5a.sheet.txt"},
+                        "gearpatch patch scenes/bild5a.ini --machine machines/classic.ini -o bild5a.sheet.txt",
+                        "gearpatch patch scenes/bild5b.ini --machine the-analog-thing --level ideal --json "
+                        "bild5b.sheet.json && gearpatch verify scenes/bild5b.ini --patch bild5b.sheet.json"},
                        vm))
     return 0;
   const std::string file = single_file(vm, "patch");
@@ -49,12 +59,16 @@ int run_patch(const std::vector<std::string>& args) {
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
   o.check_peaks = o.autoscale;
+  if (paper_scaling(vm)) o.method = ScalingMethod::paper;
+  const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
+  o.comparator_offset = circuit::comparator_offset(level);
+  o.lock_catch = level == circuit::Level::ideal;
   const Scene scene = load_scene(file, chosen_machine(vm));
-  const patching::MachinePatch p = patching::patch_on_machine(make_patch(scene, o));
-  const std::string sheet = patching::to_text(p.allocation);
+  const patching::MachinePatch p = patching::patch_on_machine(make_patch(scene, o), level);
+  const std::string sheet = patching::to_text(p);
   if (outputs.has("--out")) outputs.stage("--out", sheet);
-  if (outputs.has("--json")) outputs.stage("--json", patching::to_json(p.allocation));
-  const std::string dot = patching::to_dot(p.allocation, p.circuit);
+  if (outputs.has("--json")) outputs.stage("--json", patching::to_json(p));
+  const std::string dot = patching::to_dot(p.wiring);
   if (outputs.has("--dot")) outputs.stage("--dot", dot);
   if (outputs.has("--picture")) outputs.stage("--picture", patching::draw_with_dot(dot, picture_as));
   outputs.commit();

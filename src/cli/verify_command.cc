@@ -13,6 +13,7 @@
 #include "common/process.h"
 #include "scene/scene.h"
 #include "scaling/patch.h"
+#include "patching/sheet_deck.h"
 #include "spice/deck_reader.h"
 #include "runs/pool.h"
 #include "tolerance/verdict_report.h"
@@ -84,6 +85,8 @@ int run_verify(const std::vector<std::string>& args) {
       ("no-budget", "no error budget: the default (accepted, does nothing)")
       ("jobs,j", po::value<unsigned>(), "ngspice runs at once for --budget and a failure's measured causes "
        "(default: the cores)")
+      ("patch", po::value<std::string>(), "run the patch sheet SHEET.json (gearpatch patch --json) as wired: "
+       "a deck built from its elements, settings and numbered wires alone, at the sheet's level unless --level")
       ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
        "a plot that cannot be made is a warning, the verdict stands")
@@ -131,6 +134,15 @@ int run_verify(const std::vector<std::string>& args) {
     o.deck_header = spice::read_deck_header(*o.deck_text, path);
     if (o.deck_header) hold_to_deck(vm, *o.deck_header, path, o);
   }
+  std::string machine = chosen_machine(vm);
+  if (vm.count("patch")) {
+    const auto level = vm["level"].defaulted() ? std::nullopt : std::optional(o.level);
+    const patching::SheetRun run = patching::sheet_run(vm["patch"].as<std::string>(), level, o.transient);
+    o.deck_text = run.deck;
+    o.deck_header = spice::read_deck_header(run.deck, vm["patch"].as<std::string>());
+    hold_to_deck(vm, *o.deck_header, vm["patch"].as<std::string>(), o);
+    if (!vm.count("machine")) machine = run.machine;
+  }
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   OutputSet outputs;  // every target checked now, before the run
   const std::string report_to = main_output(vm, {"json", "plot", "keep-deck"});
@@ -147,7 +159,7 @@ int run_verify(const std::vector<std::string>& args) {
   request.workers = vm.count("jobs") ? vm["jobs"].as<unsigned>() : runs::core_count();
   if (request.workers < 1) throw Error("--jobs 0: run at least one at a time");
   if (request.budget && vm.count("no-budget")) throw Error("--budget and --no-budget: give one");
-  const Scene scene = load_scene(file, chosen_machine(vm));
+  const Scene scene = load_scene(file, machine);
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   const tolerance::VerdictReport report = tolerance::verify_and_predict(scene, o, request);

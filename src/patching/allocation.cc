@@ -21,7 +21,9 @@ bool is_inverter(const circuit::Amplifier& a) {
 
 bool is_one(double value) { return std::abs(std::abs(value) - 1.0) < 1e-12; }
 
-std::string unit_of(Signal s) {
+}  // namespace
+
+std::string signal_unit(Signal s) {
   switch (s) {
     case Signal::omega_p:
     case Signal::omega_s: return "rad/s";
@@ -31,7 +33,7 @@ std::string unit_of(Signal s) {
   return "";
 }
 
-std::string name_of(Signal s) {
+std::string_view signal_name(Signal s) {
   switch (s) {
     case Signal::omega_p: return "omega_p";
     case Signal::omega_s: return "omega_s";
@@ -40,6 +42,8 @@ std::string name_of(Signal s) {
   }
   return "";
 }
+
+namespace {
 
 /// Takes elements in circuit order; one method per part of the circuit.
 class Allocator {
@@ -279,7 +283,7 @@ class Allocator {
 
   void watches() {
     for (const auto& [signal, probe] : c_.probes)
-      a_.watches.push_back({name_of(signal), label(probe.node), probe.node, unit_of(signal), probe.full_scale});
+      a_.watches.push_back({std::string(signal_name(signal)), label(probe.node), probe.node, signal_unit(signal), probe.full_scale});
   }
 
   void counts() {
@@ -338,12 +342,18 @@ const Element* Allocation::find(const std::string& instance) const {
   return nullptr;
 }
 
+std::string run_mode(const MachineProfile& m, double machine_seconds) {
+  auto has = [&](const char* mode) { return std::find(m.modes.begin(), m.modes.end(), mode) != m.modes.end(); };
+  if (has("REPF") && m.op_time > 0 && machine_seconds <= m.op_time / 100) return "REPF";
+  if (has("REP") && m.op_time > 0 && machine_seconds <= m.op_time) return "REP";
+  return "OP";
+}
+
 std::string Allocation::run_mode() const {
   const double machine_time = beta * duration;
-  const bool repetitive = std::find(machine.modes.begin(), machine.modes.end(), "REP") != machine.modes.end();
-  if (repetitive && machine.op_time > 0 && machine_time <= machine.op_time)
-    return fmt::format("REP (repetitive), OP time {:.4g} s", machine_time);
-  return fmt::format("OP (single run), {:.4g} s of machine time", machine_time);
+  const std::string mode = patching::run_mode(machine, machine_time);
+  if (mode == "OP") return fmt::format("OP (single run), {:.5g} s of machine time", machine_time);
+  return fmt::format("{} (repetitive{}), OP time {:.5g} s", mode, mode == "REPF" ? ", fast" : "", machine_time);
 }
 
 Allocation allocate(const circuit::Circuit& circuit) { return Allocator(circuit).run(); }

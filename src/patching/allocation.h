@@ -94,6 +94,13 @@ struct Allocation {
   std::string run_mode() const;   ///< "REP, OP time 3 ms" or "OP (single run)"
 };
 
+/// REPF, REP or OP: the fastest repetitive mode whose OP-time range holds
+/// the run (REPF's range is a hundredth of REP's), else a single run.
+std::string run_mode(const MachineProfile& machine, double machine_seconds);
+/// "omega_p" …, and the physical unit of 1 MU of it.
+std::string_view signal_name(Signal signal);
+std::string signal_unit(Signal signal);
+
 /// Assigns the circuit's amplifiers, function blocks, potentiometers and
 /// initial values to the elements of the circuit's machine.
 Allocation allocate(const circuit::Circuit& circuit);

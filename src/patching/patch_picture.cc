@@ -30,94 +30,55 @@ std::string dot_string(const std::string& text) {
   return q + "\"";
 }
 
-/// Labels of the elements realising each circuit instance, in order.
-std::map<std::string, std::vector<const Element*>> by_instance(const Allocation& a) {
-  std::map<std::string, std::vector<const Element*>> map;
-  for (const Element& e : a.elements) map[e.realises].push_back(&e);
-  return map;
+/// One element as a graph node with a port per jack: amplifiers as triangles
+/// (∫, Σ, −1), potentiometers as circles with their setting, comparators,
+/// diodes and units as records of their jacks.
+std::string part_node(const Part& p) {
+  const std::string id = dot_string(p.label);
+  if (p.kind == "potentiometer")
+    return fmt::format("  {} [shape=circle, fixedsize=true, width=0.85, label={}];\n", id,
+                       dot_string(fmt::format("{}\n{:.5g}", p.label, p.setting)));
+  if (p.kind == "integrator" || p.kind == "summer" || p.kind == "inverter") {
+    const std::string symbol = p.kind == "integrator" ? "∫" : p.kind == "inverter" ? "−1" : "Σ";
+    return fmt::format("  {} [shape=triangle, orientation=270, fixedsize=true, width=1.3, height=1.1, label={}];\n",
+                       id, dot_string(fmt::format("{}\n{}\n{}", symbol, p.label, p.signal)));
+  }
+  if (p.kind == "diode")  // the triangle points from the anode (top) to the cathode (bottom bar)
+    return fmt::format("  {} [shape=invtriangle, fixedsize=true, width=0.6, height=0.5, label={}];\n", id,
+                       dot_string(p.label));
+  std::string label = p.kind == "comparator" ? p.label + " (A+B > 0: >0 → OUT, else <0)"
+                                             : fmt::format("{} {}{}", p.label, p.function,
+                                                           p.parameter.empty() ? "" : " " + p.parameter);
+  return fmt::format("  {} [shape=box, label={}];\n", id, dot_string(label));
 }
 
-std::string joined_labels(const std::vector<const Element*>& elements) {
-  std::string text;
-  for (const Element* e : elements) text += (text.empty() ? "" : " ") + e->label;
-  return text;
-}
-
-/// One node of an amplifier: a triangle (pointing right) with ∫, Σ or −1.
-std::string amplifier_node(const circuit::Amplifier& amp, const Element& e) {
-  const std::string symbol = e.kind == ElementKind::integrator ? "∫" : e.kind == ElementKind::inverter ? "−1" : "Σ";
-  return fmt::format("  {} [shape=triangle, orientation=270, fixedsize=true, width=1.3, height=1.1, "
-                     "label={}];\n", dot_string(amp.name), dot_string(fmt::format("{}\n{}\n{}", symbol, e.label,
-                                                                         signal_of(amp.out))));
-}
-
-std::string block_node(const circuit::FunctionBlock& b, const std::vector<const Element*>& elements) {
-  const bool comparator = b.block == circuit::BlockKind::comparator;
-  return fmt::format("  {} [shape={}, label={}];\n", dot_string(b.name), comparator ? "house, orientation=270" : "box",
-                     dot_string(fmt::format("{}\n{}", circuit::to_string(b.block), joined_labels(elements))));
+/// The graph node a jack of the wiring is drawn at (references and ground once each).
+std::string jack_node(const Jack& j) {
+  if (j.part == "GND") return dot_string("GND");
+  if (j.part == "REF") return dot_string("REF " + j.jack);
+  return dot_string(j.part);
 }
 
 }  // namespace
 
-std::string to_dot(const Allocation& a, const circuit::Circuit& c) {
-  const auto elements = by_instance(a);
+std::string to_dot(const Wiring& w) {
   std::string dot = fmt::format(
-      "digraph patch {{\n  rankdir=LR;\n  label={};\n  labelloc=t;\n  fontname=\"DejaVu Sans\";\n"
+      "digraph patch {{\n  rankdir=TB;\n  size=\"7.5,10.5\";\n  dpi=150;\n  ratio=compress;\n  nodesep=0.25;\n  ranksep=0.35;\n"
+      "  label={};\n  labelloc=t;\n  fontname=\"DejaVu Sans\";\n"
       "  node [fontname=\"DejaVu Sans\", fontsize=10];\n  edge [fontname=\"DejaVu Sans\", fontsize=9];\n",
-      dot_string(fmt::format("{} on {}: k0 switch {}, β = {:.6g}, {}", a.scene, a.machine.name,
-                         a.machine.integrator_constant_label(), a.beta, a.run_mode())));
-  std::map<std::string, std::string> driver;  // net → graph node
-  for (const auto& amp : c.amplifiers) {
-    driver[amp.out] = amp.name;
-    dot += amplifier_node(amp, *a.find(amp.name));
-  }
-  for (const auto& b : c.blocks) {
-    for (std::size_t k = 1; k < b.nodes.size(); ++k) driver[b.nodes[k]] = b.name;
-    dot += block_node(b, elements.at(b.name));
-  }
-  for (const auto& [node, value] : c.sources)
-    if (!driver.count(node)) {
-      driver[node] = "src_" + node;
-      dot += fmt::format("  {} [shape=plaintext, label={}];\n", dot_string("src_" + node),
-                         dot_string(fmt::format("{} MU", format_number(value))));
-    }
-  for (const auto& [node, points] : c.pwl_sources) {  // a drive that varies in time: its function generator
-    driver[node] = "src_" + node;
-    dot += fmt::format("  {} [shape=box, label={}];\n", dot_string("src_" + node),
-                       dot_string(fmt::format("{}\nfunction of time, {} points",
-                                                    a.find(node) ? a.find(node)->label : node, points.size())));
-  }
-  for (const auto& b : c.blocks)  // a block's input
-    dot += fmt::format("  {} -> {};\n", dot_string(driver.at(b.nodes.at(0))), dot_string(b.name));
-  // every potentiometer that is not in a connection: thresholds, initial values, constants
-  std::set<std::string> in_connections;
-  for (const Connection& w : a.connections) in_connections.insert(w.potentiometer_label);
-  for (const PotentiometerUse& p : a.potentiometers)
-    if (!in_connections.count(p.label))
-      dot += fmt::format("  {} [shape=circle, fixedsize=true, width=0.9, label={}];\n", dot_string(p.label),
-                         dot_string(fmt::format("{}\n{:.5f}", p.label, p.setting))) +
-             fmt::format("  {} [shape=plaintext, label={}];\n", dot_string("use_" + p.label), dot_string(p.what)) +
-             fmt::format("  {} -> {} [style=dotted];\n", dot_string(p.label), dot_string("use_" + p.label));
-  for (const Connection& w : a.connections) {
-    std::string from = driver.at(w.from_node);
-    if (!w.potentiometer_label.empty()) {
-      dot += fmt::format("  {} [shape=circle, fixedsize=true, width=0.9, label={}];\n", dot_string(w.potentiometer_label),
-                         dot_string(fmt::format("{}\n{:.5f}", w.potentiometer_label, w.setting)));
-      dot += fmt::format("  {} -> {};\n", dot_string(from), dot_string(w.potentiometer_label));
-      from = w.potentiometer_label;
-    }
-    const std::string sw = w.switch_label.empty() ? "" : ", switch " + w.switch_label;
-    if (!w.switch_node.empty())  // the comparator that opens and closes this path
-      dot += fmt::format("  {} -> {} [style=dotted, arrowhead=odot, label={}];\n", dot_string(driver.at(w.switch_node)),
-                         dot_string(w.to_instance), dot_string(fmt::format("switches {}", w.number)));
-    dot += fmt::format("  {} -> {} [label={}{}];\n", dot_string(from), dot_string(w.to_instance),
-                       dot_string(fmt::format("{}: ×{}{}", w.number, w.weight, sw)),
-                       w.switch_label.empty() ? "" : ", style=dashed");
-  }
-  for (const InitialCondition& ic : a.initial_conditions)
-    dot += fmt::format("  {} [shape=plaintext, label={}];\n  {} -> {} [style=dotted, label=\"IC\"];\n",
-                       dot_string("ic_" + ic.node), dot_string("IC " + format_number(ic.value) + " MU"), dot_string("ic_" + ic.node),
-                       dot_string(driver.at(ic.node)));
+      dot_string(fmt::format("{} on {}: k0 switch {}, β = {:.5g}, mode {}; every wire numbered as on the sheet",
+                             w.scene, w.machine, w.k0_switch, w.beta, w.mode)));
+  for (const Part& p : w.parts) dot += part_node(p);
+  std::set<std::string> fixed;
+  for (const Wire& x : w.wires)
+    for (const Jack& j : {x.from, x.to})
+      if ((j.part == "GND" || j.part == "REF") && fixed.insert(jack_node(j)).second)
+        dot += fmt::format("  {} [shape=diamond, width=0.5, height=0.5, label={}];\n", jack_node(j),
+                           dot_string(j.part == "GND" ? "GND" : j.jack));
+  for (const Wire& x : w.wires)
+    dot += fmt::format("  {} -> {} [label={}, taillabel={}, headlabel={}, labelfontsize=8];\n", jack_node(x.from),
+                       jack_node(x.to), dot_string(std::to_string(x.number)), dot_string(x.from.jack),
+                       dot_string(x.to.jack));
   return dot + "}\n";
 }
 

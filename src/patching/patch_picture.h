@@ -3,14 +3,16 @@
 
 #include "circuit/circuit.h"
 #include "patching/allocation.h"
+#include "patching/wiring.h"
 
 namespace gearpatch::patching {
 
-/// The patch as a Graphviz graph in analog-computer notation: integrators,
-/// summers and inverters as triangles pointing along the signal, potentiometers
-/// as circles with their setting, comparators, diodes and function generators
-/// as labelled shapes, references as plain text; every element's label shown.
-std::string to_dot(const Allocation& allocation, const circuit::Circuit& circuit);
+/// The patch as a Graphviz graph in analog-computer notation, top to bottom
+/// to fit A4: integrators, summers and inverters as triangles, potentiometers
+/// as circles with their setting, diodes as triangles pointing at the
+/// cathode, comparators and units as boxes, references and ground as
+/// diamonds; every numbered wire an arrow with its number and both jacks.
+std::string to_dot(const Wiring& wiring);
 
 /// "svg" or "png" for a --picture path (else Error naming the option), checking
 /// that Graphviz's `dot` is installed.

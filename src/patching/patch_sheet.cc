@@ -6,29 +6,20 @@
 #include "common/numbers.h"
 #include "machine/machine_file.h"
 #include "patching/signal_names.h"
+#include "patching/wiring_json.h"
 
 namespace gearpatch::patching {
 
 namespace {
 
-std::string through(const Connection& c) {
-  std::string text;
-  if (c.potentiometer)
-    text += c.potentiometer_label.empty()
-                ? fmt::format(" → wire ({} = 1)", to_string(*c.potentiometer))
-                : fmt::format(" → {} ({} = {:.5f})", c.potentiometer_label, to_string(*c.potentiometer), c.setting);
-  if (!c.switch_label.empty()) text += " → switch of " + c.switch_label;
-  if (!c.latch_label.empty()) text += " ∥ latch " + c.latch_label;
-  return text;
-}
-
-std::string header(const Allocation& a) {
+std::string header(const Allocation& a, const Wiring& w) {
   const MachineProfile& m = a.machine;
   std::string text = fmt::format("patch {} on {}{}\n", a.scene, m.name, m.description.empty() ? "" : ": " + m.description);
   text += fit_summary(a) + "\n";
-  text += fmt::format("k0 switch: {} (k0 = {}/s); β = {:.6g}: machine time = β · real time\n",
-                      m.integrator_constant_label(), format_number(m.integrator_constant), a.beta);
-  text += fmt::format("mode: {}; 1 MU = {} V; every amplifier inverts\n", a.run_mode(), format_number(m.unit_volts));
+  text += fmt::format("k0 switch: {} (k0 = {:.5g}/s); β = {:.5g}: machine time = β · real time\n", w.k0_switch, w.k0,
+                      w.beta);
+  text += fmt::format("mode: {}; 1 MU = {:.5g} V; every amplifier inverts; thresholds set for the {} level\n",
+                      a.run_mode(), w.unit_volts, w.level);
   return text;
 }
 
@@ -40,47 +31,61 @@ std::string counts(const Allocation& a) {
   return text;
 }
 
-std::string elements(const Allocation& a) {
+std::string elements(const Wiring& w) {
   std::string text = "\nelements:\n";
-  for (const Element& e : a.elements)
-    if (e.kind != ElementKind::potentiometer)
-      text += fmt::format("  {:<10} {:<14} {}\n", e.label, e.realises, e.role);
-  return text;
-}
-
-std::string potentiometers(const Allocation& a) {
-  std::string text = a.machine.potentiometers_buffered
-                         ? "\npotentiometers (buffered: the dial is the setting):\n"
-                         : "\npotentiometers (not buffered: dial 'loaded' with the load connected):\n";
-  for (const PotentiometerUse& p : a.potentiometers) {
-    text += fmt::format("  {:<10} {:.5f}", p.label, p.setting);
-    if (!a.machine.potentiometers_buffered) text += fmt::format("  loaded {:<9}", fmt::format("{:.5f}", p.loaded_setting));
-    text += "  " + p.what + "\n";
+  for (const Part& p : w.parts) {
+    if (p.kind == "potentiometer") continue;
+    std::string what = p.role;
+    if (!p.function.empty() && p.function != "drive" && p.function != "latched_switch")
+      what = fmt::format("{} unit, parameter {}: {}", p.function, p.parameter.empty() ? "none" : p.parameter, p.role);
+    text += fmt::format("  {:<10} {:<14} {}\n", p.label, p.kind, what);
   }
   return text;
 }
 
-std::string initial_conditions(const Allocation& a) {
-  std::string text = "\ninitial conditions (set in IC mode):\n";
-  for (const InitialCondition& ic : a.initial_conditions)
-    text += fmt::format("  {:<10} output starts at {} MU ({}): {}\n", ic.integrator, format_number(ic.value),
-                        signal_of(ic.node), ic.how);
+std::string potentiometers(const Allocation& a, const Wiring& w) {
+  const bool buffered = a.machine.potentiometers_buffered;
+  std::string text = buffered ? "\npotentiometers (buffered: the dial is the setting; one may feed several inputs):\n"
+                              : "\npotentiometers (not buffered: set the dial with the load connected):\n";
+  for (const Part& p : w.parts) {
+    if (p.kind != "potentiometer") continue;
+    text += fmt::format("  {:<10} {:<9}", p.label, fmt::format("{:.5g}", p.setting));
+    if (!buffered) text += fmt::format("  dial {:<9}", fmt::format("{:.5g}", p.dial));
+    text += fmt::format("  {:<14} {}\n", p.setting_name, p.role);
+  }
   return text;
 }
 
-std::string connections(const Allocation& a) {
-  std::string text = "\nconnections (element output → element input, weight):\n";
-  for (const Connection& c : a.connections)
-    text += fmt::format("  {:>3}. {} ({}){} → {} input {} (weight {})\n", c.number, c.from_label, c.from_signal,
-                        through(c), c.to_label, c.input, c.weight);
+std::string initial_conditions(const Wiring& w) {
+  std::string text = "\ninitial values (IC mode; the IC input takes minus the start value):\n";
+  for (const Wire& x : w.wires) {
+    if (x.to.jack != "IC") continue;
+    const Part* p = w.find(x.to.part);
+    text += fmt::format("  {:<10} starts at {:.5g} MU ({}): wire {} from {}\n", x.to.part, p ? p->setting : 0,
+                        p ? p->signal : "", x.number, x.from.name());
+  }
   return text;
 }
 
-std::string watch(const Allocation& a) {
-  std::string text = "\nwatch:\n";
-  for (const Watch& w : a.watches)
-    text += fmt::format("  {:<8} at {} output: 1 MU ({} V) = {} {}\n", w.signal, w.label,
-                        format_number(a.machine.unit_volts), format_number(w.full_scale), w.unit);
+std::string wires(const Wiring& w) {
+  std::string text = "\nwires (from an output socket to an input socket; outputs may be stacked, each input takes one cable):\n";
+  for (const Wire& x : w.wires) {
+    const Part* from = w.find(x.from.part);
+    const Part* to = w.find(x.to.part);
+    const bool crosses = (from && to && from->machine != to->machine) || x.to.part.find(":GND") != std::string::npos;
+    text += fmt::format("  {:>3}. {:<16} → {:<16}{}{}\n", x.number, x.from.name(), x.to.name(),
+                        x.carries.empty() ? "" : "  " + x.carries, crosses ? "  (crosses between machines)" : "");
+  }
+  return text;
+}
+
+std::string scope(const Wiring& w) {
+  std::string text = fmt::format(
+      "\noscilloscope: time base {:.5g} s/div (the run in 10 div); trigger {} on CH{}, {}, at {:.5g} V\n",
+      w.scope.seconds_per_div, w.scope.mode, w.scope.channel, w.scope.slope, w.scope.level_volts);
+  for (const ScopeChannel& s : w.watch)
+    text += fmt::format("  CH{} {:<8} at {:<10} {:.5g} V/div; 1 MU = {:.5g} V = {}{:.5g} {}\n", s.channel, s.signal,
+                        s.at.name(), s.volts_per_div, s.volts_per_mu, s.sign < 0 ? "−" : "+", s.full_scale, s.unit);
   return text;
 }
 
@@ -112,12 +117,15 @@ std::string fit_summary(const Allocation& a) {
   return text;
 }
 
-std::string to_text(const Allocation& a) {
-  return header(a) + counts(a) + elements(a) + potentiometers(a) + initial_conditions(a) + connections(a) +
-         watch(a) + lines("notes", a.notes) + lines("options", a.options);
+std::string to_text(const MachinePatch& p) {
+  const Allocation& a = p.allocation;
+  const Wiring& w = p.wiring;
+  return header(a, w) + counts(a) + elements(w) + potentiometers(a, w) + initial_conditions(w) + wires(w) +
+         scope(w) + lines("notes", w.notes) + lines("options", a.options);
 }
 
-std::string to_json(const Allocation& a) {
+std::string to_json(const MachinePatch& p) {
+  const Allocation& a = p.allocation;
   using nlohmann::ordered_json;
   ordered_json j;
   j["scene"] = a.scene;
@@ -125,38 +133,13 @@ std::string to_json(const Allocation& a) {
   j["fits"] = a.fits();
   j["machines_needed"] = a.machines_needed;
   j["summary"] = fit_summary(a);
-  j["k0"] = a.machine.integrator_constant;
-  j["k0_switch"] = a.machine.integrator_constant_label();
-  j["beta"] = a.beta;
-  j["mode"] = a.run_mode();
-  j["unit_volts"] = a.machine.unit_volts;
   for (const Count& c : a.counts)
     j["counts"].push_back({{"element", element_name(c.kind)}, {"needed", c.needed}, {"available", c.available}});
-  for (const Element& e : a.elements)
-    j["elements"].push_back({{"label", e.label}, {"element", element_name(e.kind)}, {"machine", e.machine},
-                             {"realises", e.realises}, {"role", e.role}});
-  for (const PotentiometerUse& p : a.potentiometers)
-    j["potentiometers"].push_back({{"label", p.label}, {"setting_name", p.setting_name ? to_string(*p.setting_name) : ""},
-                                   {"setting", p.setting}, {"loaded_setting", p.loaded_setting},
-                                   {"weight", p.weight}, {"what", p.what}});
-  for (const InitialCondition& ic : a.initial_conditions)
-    j["initial_conditions"].push_back({{"integrator", ic.integrator}, {"node", ic.node}, {"value", ic.value},
-                                       {"how", ic.how}});
-  for (const Connection& c : a.connections)
-    j["connections"].push_back({{"number", c.number}, {"from", c.from_label}, {"from_node", c.from_node},
-                                {"signal", c.from_signal},
-                                {"potentiometer", c.potentiometer ? to_string(*c.potentiometer) : ""},
-                                {"potentiometer_label", c.potentiometer_label}, {"setting", c.setting},
-                                {"loaded_setting", c.loaded_setting}, {"switch", c.switch_label},
-                                {"latch", c.latch_label}, {"to", c.to_label}, {"to_instance", c.to_instance}, {"input", c.input},
-                                {"weight", c.weight}});
-  for (const Watch& w : a.watches)
-    j["watch"].push_back({{"signal", w.signal}, {"at", w.label}, {"node", w.node}, {"full_scale", w.full_scale},
-                          {"unit", w.unit}});
   j["shortfalls"] = a.shortfalls;
   j["input_overflows"] = a.input_overflows;
-  j["notes"] = a.notes;
+  j["notes"] = p.wiring.notes;
   j["options"] = a.options;
+  j["wiring"] = wiring_json(p.wiring);
   return j.dump(2) + "\n";
 }
 

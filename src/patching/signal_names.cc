@@ -9,7 +9,7 @@ std::string signal_of(const std::string& node) {
       {"wp", "+φ̇p/φ̇pm"},          {"wp_n", "−φ̇p/φ̇pm"},         {"ws", "+φ̇s/φ̇sm"},
       {"ws_n", "−φ̇s/φ̇sm"},        {"dw_n", "−Δφ̇/Δφ̇m"},         {"dw", "+Δφ̇/Δφ̇m"},
       {"x", "+Δφ/Δφm"},           {"dz_n", "−deadzone(Δφ)/Δφm"}, {"xp", "+Δφ'/Δφ'm"},
-      {"xp_n", "−Δφ'/Δφ'm"},      {"m_n", "−M0/M0m"},           {"m", "+M0/M0m"},
+      {"xp_n", "−Δφ'/Δφ'm"},   {"x_n", "−Δφ/Δφm"},      {"m_n", "−M0/M0m"},           {"m", "+M0/M0m"},
       {"sign_p", "+sign φ̇p"},     {"sign_s", "+sign φ̇s"},       {"m_abs_n", "−|M0|/M0m"},
       {"m_abs", "+|M0|/M0m"},     {"ws_pos", "φ̇s > 0"},         {"ws_neg", "φ̇s < 0"},
       {"lock_steep_n", "−clip(φ̇s/band)"}, {"lock_below", "min(clip, 0)"}, {"lock_above", "max(clip, 0)"},
