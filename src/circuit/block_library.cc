@@ -33,12 +33,8 @@ struct IdealFigures {
 
 /// Hardware level: datasheet figures (templates/README.md lists them).
 struct HardwareFigures {
-  // TL071-class op-amp.
-  static constexpr double opamp_a0 = 2.0e5;
-  static constexpr double opamp_gbw = 3.0e6;       ///< Hz
-  static constexpr double opamp_slew = 13.0e6;     ///< V/s
+  // TL071-class op-amp (gain, bandwidth and slew come from the machine profile).
   static constexpr double opamp_headroom = 1.5;    ///< V below each supply
-  static constexpr double opamp_vos = 1.0e-3;      ///< V
   static constexpr double opamp_ib = 65.0e-12;     ///< A
   static constexpr double opamp_rid = 1.0e12;      ///< Ohm
   static constexpr double opamp_ro = 50.0;         ///< Ohm
@@ -53,8 +49,7 @@ struct HardwareFigures {
   static constexpr double diode_tt = 20.0e-9;
   static constexpr double diode_bv = 100.0;
   static constexpr double diode_ibv = 100.0e-6;
-  // DG419-class switch.
-  static constexpr double switch_ron = 35.0;
+  // DG419-class switch (its on-resistance comes from the machine profile).
   static constexpr double switch_roff = 1.0e11;
   static constexpr double switch_vt = 1.6;         ///< V, midway of 0.8 / 2.4 V
   static constexpr double switch_vh = 0.8;         ///< V
@@ -62,7 +57,6 @@ struct HardwareFigures {
   static constexpr double switch_rdel = 1.0e3;     ///< Ohm of the delay RC
   // Blocks.
   static constexpr double limiter_rs = 1.0e3;      ///< Ohm, op-amp to clamped output
-  static constexpr double comparator_hyst_mu = 1.0e-3;  ///< half-width, MU
   static constexpr double comparator_r1 = 1.0e4;   ///< Ohm, input to + input
   static constexpr double thermal_voltage = 1.380649e-23 * 300.15 / 1.602176634e-19;  ///< 27 C
 };
@@ -92,7 +86,7 @@ const std::vector<BlockInfo>& infos() {
 }
 
 /// Positive-feedback resistor of the hardware Schmitt trigger: thresholds at
-/// offset +- vsat*R1/R2 = offset +- comparator_hyst_mu.
+/// offset +- vsat*R1/R2 = offset +- the profile's comparator hysteresis.
 double comparator_r2(const MachineProfile& m) {
   using F = HardwareFigures;
   return F::comparator_r1 * (m.supply_volts - F::opamp_headroom) / (m.comparator_hysteresis * m.unit_volts);
@@ -363,7 +357,6 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
   return render(level, kind, ctx);
 }
 
-double hardware_opamp_offset_volts() { return HardwareFigures::opamp_vos; }
 
 double halfwave_gain(Level level, const MachineProfile& m) {
   if (level == Level::ideal) return 1;

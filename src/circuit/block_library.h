@@ -47,9 +47,6 @@ const BlockInfo& block_info(BlockKind block);
 /// The block's name, "dead_zone" …: the one table is block_info's.
 std::string to_string(BlockKind block);
 
-/// The input offset voltage of the hardware op-amp model (TL071 class), V:
-/// it makes every hardware integrator drift, which `verify` uses to diagnose.
-double hardware_opamp_offset_volts();
 
 /// The gain of a half-wave rectifier that must pass a full 1 MU: 1 where its
 /// op-amp swings to 1 MU plus a diode drop with a volt to spare, else 1/2.

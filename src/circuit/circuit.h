@@ -27,7 +27,7 @@ struct AmplifierInput {
   /// With switched_by: a latch in parallel with the switch (gp_latch), closed
   /// once switched_by is high and released_by low, opened once switched_by
   /// is low and released_by high, held in between.
-  std::string released_by;
+  std::string released_by = {};
 };
 
 /// An inverting integrator or summer of the machine, with its output node.

@@ -245,8 +245,9 @@ class Wirer {
     } else if (!b.parameter.empty()) {
       offset = std::stod(b.parameter);
     }
-    if (on_twist(b)) return constant(-offset, "a_plus_2h", fmt::format(
-        "contact threshold on Δφ: a + 2 × hysteresis = {:.5g} MU, into B (settings' {} is the threshold on Δφ')",
+    if (on_twist(b)) return constant(-offset, "a_contact", fmt::format(
+        "contact threshold on Δφ: a + the comparator's hysteresis + the dead zone's corner = {:.5g} MU, into B "
+        "(settings' {} is the threshold on Δφ')",
         offset, name));
     return constant(-offset, name, fmt::format("threshold {} = {:.5g} MU of the comparators, into B", name, offset));
   }
@@ -261,7 +262,7 @@ class Wirer {
   void comparator(const circuit::FunctionBlock& b) {
     std::string role = b.comment;
     if (on_twist(b))
-      if (const auto at = role.find(b.parameter); at != std::string::npos) role.replace(at, b.parameter.size(), "a + 2h");
+      if (const auto at = role.find(b.parameter); at != std::string::npos) role.replace(at, b.parameter.size(), "a_contact");
     const Part& p = take(ElementKind::comparator, role);
     uses_[b.nodes[1]] = {p.label, b.nodes[0], {}, 0};
     const std::string ctrl = b.nodes[1];
