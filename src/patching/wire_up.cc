@@ -205,7 +205,8 @@ class Wirer {
   }
 
   void sources() {
-    for (const auto& [node, value] : c_.sources) {
+    for (const auto& [node, source_value] : c_.sources) {
+      const double value = source_value;  // a copy: clang 14 lets no lambda capture a structured binding
       if (driver_.count(node)) continue;
       if (is_one(value)) {
         driver_[node] = reference(value);
