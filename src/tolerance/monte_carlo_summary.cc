@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fmt/format.h>
 #include <map>
 
@@ -142,7 +143,7 @@ MonteCarloSummary summarise(const MonteCarloStudy& study, const std::vector<runs
 
 std::string to_table(const MonteCarloSummary& m) {
   std::string t = fmt::format("Monte Carlo: {} draws of {} on {} (seed {}), {} completed, {} failed\n", m.study.runs,
-                              m.study.scene_path, m.study.machine.empty() ? "the scene's machine" : m.study.machine,
+                              std::filesystem::path(m.study.scene_path).filename().string(), m.study.machine.empty() ? "the scene's machine" : m.study.machine,
                               m.study.seed, m.completed, m.failed.size());
   t += fmt::format("yield {:.1f} % ({} of {} completed draws pass every check verify makes at the tolerance of "
                    "{:g} %: each signal's tube, impacts, peaks, restitution, overloads)\n",
