@@ -5,6 +5,7 @@
 
 #include "circuit/circuit.h"
 #include "model/gear_model.h"
+#include "patching/wiring.h"
 #include "scaling/patch.h"
 #include "scene/scene_inputs.h"
 #include "solver/integrate.h"
@@ -25,11 +26,15 @@ Trajectory cut(const Trajectory& full, double end) {
   return t;
 }
 
-/// Each signal's reference peak in machine units: where the watch list sets its scale.
-std::vector<std::pair<Signal, double>> peaks_mu(const Trajectory& ref, const circuit::Circuit& c) {
-  std::vector<std::pair<Signal, double>> out;
-  for (Signal s : all_signals) out.emplace_back(s, peak(ref.peaks, s).value / c.probes.at(s).full_scale);
-  return out;
+/// The patch sheet's watch list (`gearpatch patch` prints it): which scope
+/// channel shows which signal, the sign of the watched output, its scale.
+std::vector<WatchedSignal> sheet_watch_list(const circuit::Circuit& circuit) {
+  std::vector<WatchedSignal> list;
+  for (const patching::ScopeChannel& c : patching::wire_up(circuit).watch)
+    for (Signal s : all_signals)
+      if (to_string(s) == c.signal)
+        list.push_back({s, fmt::format("CH{}", c.channel), static_cast<double>(c.sign), c.volts_per_div});
+  return list;
 }
 
 void refuse_finer_than_resolution(const MeasuredTrace& m, double tolerance, const std::string& path) {
@@ -99,7 +104,7 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     const circuit::Circuit circuit = circuit::build_circuit(patch, r.level);
     r.beta = circuit.beta, r.autoscaled = circuit.autoscaled, r.scaling = circuit.scaling;
 
-    out.watch = provisional_watch_list(circuit, peaks_mu(r.reference, circuit));
+    out.watch = sheet_watch_list(circuit);
     const ScopeRecording recording = read_scope_csv(text, mo.path, mo.format);
     out.measured = measure_trace(recording, mo, circuit, out.watch, scene.duration);
     const MeasuredTrace& m = out.measured;

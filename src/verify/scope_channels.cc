@@ -18,18 +18,4 @@ double watch_scale(double peak_mu, double unit_volts) {
   return volts_per_division(std::clamp(std::abs(peak_mu), 0.05, 1.0) * unit_volts);
 }
 
-std::vector<WatchedSignal> provisional_watch_list(const circuit::Circuit& circuit,
-                                                  const std::vector<std::pair<Signal, double>>& peak_mu) {
-  std::vector<WatchedSignal> list;
-  int channel = 1;
-  for (Signal s : all_signals) {
-    if (!circuit.probes.count(s)) continue;
-    double peak = 1;
-    for (const auto& [signal, mu] : peak_mu)
-      if (signal == s) peak = mu;
-    list.push_back({s, fmt::format("CH{}", channel++), 1.0, watch_scale(peak, circuit.machine.unit_volts)});
-  }
-  return list;
-}
-
 }  // namespace gearpatch::verify

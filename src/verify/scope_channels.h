@@ -2,7 +2,6 @@
 #include <string>
 #include <vector>
 
-#include "circuit/circuit.h"
 #include "solver/signal.h"
 
 namespace gearpatch::verify {
@@ -17,18 +16,10 @@ struct WatchedSignal {
   double volts_per_div = 1;  ///< at the machine, probe ratio applied
 };
 
-/// The scope channels of a patched circuit: φ̇p, φ̇s, Δφ, M0 on CH1..CH4, each
-/// watched on its probe's non-inverted node (sign +), at the smallest 1-2-5
-/// scale that keeps its peak (`peak_mu`, machine units) within 4 divisions of
-/// the centre. The one place that says so until the patch sheet prints its
-/// own watch list: swap this function for the sheet's.
-std::vector<WatchedSignal> provisional_watch_list(const circuit::Circuit& circuit,
-                                                  const std::vector<std::pair<Signal, double>>& peak_mu);
-
 /// The smallest of 1, 2, 5 × 10^k volts per division that shows ±`volts` within ±4 divisions.
 double volts_per_division(double volts);
 
-/// The watch list's scale for a signal peaking at `peak_mu` machine units:
+/// The scale a person zooms the sheet's ±1 MU scale to for a signal peaking at `peak_mu` machine units:
 /// volts_per_division of the peak, taken as at least 0.05 MU (a signal that
 /// barely moves is still seen on a usable scale) and at most 1 MU.
 double watch_scale(double peak_mu, double unit_volts);
