@@ -1,7 +1,7 @@
 // verify --measured: oscilloscope recordings of the machine judged against the
 // reference. The recordings are made from one hardware-level ngspice run per
-// machine, as a scope would record them: 8-bit steps at the finest 1-2-5 volts
-// per division that holds the signal's peak (the sheet's ±1 MU scale zoomed in), noise, a trigger offset, a 1 % probe gain error, a record
+// machine, as a scope would record them: 8-bit steps at the sheet's volts per
+// division (the finest 1-2-5 scale that holds the signal's peak), noise, a trigger offset, a 1 % probe gain error, a record
 // length of its own, written in each format as its manual shows it.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -72,6 +72,15 @@ double interpolate(const std::vector<double>& t, const std::vector<double>& y, d
   return y[j - 1] + (at - t[j - 1]) / (t[j] - t[j - 1]) * (y[j] - y[j - 1]);
 }
 
+/// The volts per division a signal is recorded at: the finest 1-2-5 scale
+/// holding its peak, as the patch sheet's watch list gives it.
+double recorded_scale(const MachineRun& run, Signal signal) {
+  const auto& r = run.result;
+  const auto fs = std::find_if(r.comparison.signals.begin(), r.comparison.signals.end(),
+                               [&](const auto& e) { return e.signal == signal; })->full_scale;
+  return verify::watch_scale(peak(r.reference.peaks, signal).value / fs, run.scene.machine.unit_volts);
+}
+
 Recording record(const MachineRun& run, const ScopeSetup& s) {
   const auto& r = run.result;
   const double unit = run.scene.machine.unit_volts;
@@ -86,7 +95,7 @@ Recording record(const MachineRun& run, const ScopeSetup& s) {
     const Signal signal = all_signals[s.order[k]];
     const auto fs = std::find_if(r.comparison.signals.begin(), r.comparison.signals.end(),
                                  [&](const auto& e) { return e.signal == signal; })->full_scale;
-    const double vdiv = verify::watch_scale(peak(r.reference.peaks, signal).value / fs, unit);
+    const double vdiv = recorded_scale(run, signal);
     const double lsb = 8 * vdiv / 256;
     std::vector<double> v;
     for (double t : rec.t) {
@@ -262,6 +271,8 @@ TEST_CASE("recordings of the hardware run pass at 2 % on each machine in every s
       const auto v = judge(run, write_as(rec, format), tolerance);
       INFO(format << "\n" << verify::to_table(v.result));
       CHECK(v.result.passed);
+      for (const verify::WatchedSignal& w : v.watch)  // recorded at the sheet's own volts per division
+        CHECK(w.volts_per_div == Approx(recorded_scale(run, w.signal)));
       CHECK(v.measured.format == format);
       CHECK(v.measured.missing.empty());
       // Within a quarter of the time tolerance of where the run starts.

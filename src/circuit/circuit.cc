@@ -382,6 +382,10 @@ class Builder {
     c_.probes[Signal::omega_s] = {"ws", m.speed_secondary};
     c_.probes[Signal::dphi] = {"x", m.twist};
     c_.probes[Signal::m0] = {"m", m.torque};
+    const std::pair<Signal, const char*> scaled[] = {
+        {Signal::omega_p, "Wp"}, {Signal::omega_s, "Ws"}, {Signal::dphi, "X"}, {Signal::m0, "m"}};
+    for (const auto& [signal, name] : scaled)
+      if (const auto at = patch_.peaks.find(name); at != patch_.peaks.end()) c_.probes[signal].peak_mu = at->second;
   }
 
   static std::string format_band(double band) { return fmt::format("{}", band); }

@@ -54,6 +54,9 @@ struct FunctionBlock {
 struct Probe {
   std::string node;
   double full_scale = 1;
+  /// The signal's simulated peak in machine units where the patch checked
+  /// its peaks, else the scale's 1 MU: the oscilloscope's scale follows it.
+  double peak_mu = 1;
 };
 
 /// The analog program of Bild 4 for one scene: amplifiers, function blocks,

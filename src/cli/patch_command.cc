@@ -58,7 +58,7 @@ int run_patch(const std::vector<std::string>& args) {
   }
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
-  o.check_peaks = o.autoscale;
+  o.check_peaks = true;  // the oscilloscope's scales follow the simulated peaks
   if (paper_scaling(vm)) o.method = ScalingMethod::paper;
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
   o.comparator_offset = circuit::comparator_offset(level);

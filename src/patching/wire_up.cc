@@ -596,8 +596,9 @@ class Wirer {
     for (std::size_t k = 0; k < w_.wires.size(); ++k) w_.wires[k].number = static_cast<int>(k) + 1;
   }
 
-  /// One oscilloscope channel per compared signal at 1-2-5 volts per
-  /// division holding ±1 MU in ±4 divisions; the time base holds the run in
+  /// One oscilloscope channel per compared signal at the finest 1-2-5 volts
+  /// per division holding its simulated peak (at least 0.05 MU, at most 1 MU)
+  /// in ±4 divisions, so that a scope's 8-bit steps stay fine; the time base holds the run in
   /// ten; the trigger catches the run's start on the first signal that leaves
   /// a nonzero initial value (else the first channel leaving 0).
   void watch() {
@@ -610,7 +611,7 @@ class Wirer {
       s.full_scale = probe.full_scale;
       s.unit = signal_unit(signal);
       s.volts_per_mu = w_.unit_volts;
-      s.volts_per_div = one_two_five(w_.unit_volts / 4);
+      s.volts_per_div = one_two_five(std::clamp(probe.peak_mu, 0.05, 1.0) * w_.unit_volts / 4);
       w_.watch.push_back(s);
     }
     ScopeSetup& scope = w_.scope;

@@ -19,7 +19,7 @@ struct WatchedSignal {
 /// The smallest of 1, 2, 5 × 10^k volts per division that shows ±`volts` within ±4 divisions.
 double volts_per_division(double volts);
 
-/// The scale a person zooms the sheet's ±1 MU scale to for a signal peaking at `peak_mu` machine units:
+/// The patch sheet's scale for a signal peaking at `peak_mu` machine units:
 /// volts_per_division of the peak, taken as at least 0.05 MU (a signal that
 /// barely moves is still seen on a usable scale) and at most 1 MU.
 double watch_scale(double peak_mu, double unit_volts);
