@@ -25,7 +25,7 @@ namespace {
 
 Patch patch_of(const std::string& scene, const std::string& machine, circuit::Level level = circuit::Level::hardware) {
   PatchOptions o;
-  o.check_peaks = false;
+  o.check_peaks = true;  // as gearpatch patch: the oscilloscope scales follow the peaks
   o.comparator_offset = circuit::comparator_offset(level);
   return make_patch(load_scene(testing::source_path("scenes/" + scene + ".ini"), machine), o);
 }
