@@ -1,5 +1,7 @@
 #include "support.h"
 
+#include "solver/signal.h"
+
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -58,6 +60,15 @@ double scaled_difference(const Trajectory& reference, const Trajectory& other, b
   for (int i = 0; i < 4; ++i)
     if (scale[i] > 0) worst = std::max(worst, std::abs(pa[i]->value - pb[i]->value) / scale[i]);
   return worst;
+}
+
+verify::CircuitTrace perfect_circuit(const Trajectory& reference) {
+  verify::CircuitTrace c;
+  for (const Sample& s : reference.samples) {
+    c.t.push_back(s.t);
+    for (Signal signal : all_signals) c.signals[signal].push_back(value(s, signal));
+  }
+  return c;
 }
 
 }  // namespace gearpatch::testing

@@ -10,6 +10,7 @@
 #include "model/gear_model.h"
 #include "scene/scene_inputs.h"
 #include "solver/trajectory.h"
+#include "verify/circuit_trace.h"
 
 #if defined(__SANITIZE_ADDRESS__)  // g++
 #define GEARPATCH_TESTS_SANITIZED 1
@@ -87,5 +88,8 @@ struct TempFolder {
 
 /// Runs a shell command; returns its exit status and puts stdout+stderr in `output`.
 int run_command(const std::string& command, std::string& output);
+
+/// The reference's own samples as a circuit trace: a perfect circuit.
+verify::CircuitTrace perfect_circuit(const Trajectory& reference);
 
 }  // namespace gearpatch::testing

@@ -10,16 +10,6 @@ using namespace gearpatch;
 
 namespace {
 
-/// The reference's own samples as a circuit trace: a perfect circuit.
-verify::CircuitTrace perfect_circuit(const Trajectory& reference) {
-  verify::CircuitTrace c;
-  for (const Sample& s : reference.samples) {
-    c.t.push_back(s.t);
-    for (Signal signal : all_signals) c.signals[signal].push_back(value(s, signal));
-  }
-  return c;
-}
-
 /// A contact `depth` rad deep in free flight 0.1 s after the first release,
 /// with the tooth torque c·(|Δφ| − ε) the spring gives, and the secondary's
 /// speed changed by `kick` rad/s from its deepest point on.
@@ -61,7 +51,7 @@ TEST_CASE("a contact that changes no signal beyond the tolerance is grazing, a 1
   limits.speed_effect_s = tolerance * std::abs(ws_scale);
   const double stiffness = model.parameters().stiffness;
 
-  verify::CircuitTrace touched = perfect_circuit(reference);
+  verify::CircuitTrace touched = testing::perfect_circuit(reference);
   add_contact(reference, model, 1e-7, 0, touched);
   const verify::ImpactMatch touch = verify::match_impacts(reference, touched, model, limits);
   CHECK(touch.circuit_count == 4);
@@ -71,14 +61,14 @@ TEST_CASE("a contact that changes no signal beyond the tolerance is grazing, a 1
   CHECK(touch.impacts.back().peak_circuit == Approx(stiffness * 1e-7));
 
   // 1 % of M0's full scale at its peak: twice the tolerance, an impact the reference lacks.
-  verify::CircuitTrace pressed = perfect_circuit(reference);
+  verify::CircuitTrace pressed = testing::perfect_circuit(reference);
   add_contact(reference, model, 0.01 * std::abs(m0_scale) / stiffness, 0, pressed);
   const verify::ImpactMatch press = verify::match_impacts(reference, pressed, model, limits);
   CHECK(press.extra() == 1);
   CHECK(!press.impacts.back().grazing);
 
   // As shallow as the first, but the secondary leaves it 1 % of its full scale faster.
-  verify::CircuitTrace kicked = perfect_circuit(reference);
+  verify::CircuitTrace kicked = testing::perfect_circuit(reference);
   add_contact(reference, model, 1e-7, 0.01 * std::abs(ws_scale), kicked);
   const verify::ImpactMatch kick = verify::match_impacts(reference, kicked, model, limits);
   CHECK(kick.extra() == 1);

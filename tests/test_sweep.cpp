@@ -244,8 +244,8 @@ TEST_CASE("the --help examples of sweep, merge and figures run as written", "[sw
   };
   std::string help, output;
   REQUIRE(run(kBinary + " --help", help) == 0);
-  for (const std::string& command : {"sweep", "merge", "figures"}) CHECK_THAT(help, Catch::Contains("  " + command + " "));
-  for (const std::string& command : {"sweep", "merge", "figures"}) {
+  for (const std::string command : {"sweep", "merge", "figures"}) CHECK_THAT(help, Catch::Contains("  " + command + " "));
+  for (const std::string command : {"sweep", "merge", "figures"}) {
     REQUIRE(run(kBinary + " " + command + " --help", help) == 0);
     const std::string examples = help.substr(help.rfind("\nexamples:\n") + 11);
     std::istringstream lines(examples);

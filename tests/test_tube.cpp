@@ -124,16 +124,6 @@ TEST_CASE("the tube's edges widen at a jump and hug the curve elsewhere", "[veri
 
 namespace {
 
-/// The reference's own samples as a circuit trace: a perfect circuit.
-verify::CircuitTrace as_circuit(const Trajectory& reference) {
-  verify::CircuitTrace c;
-  for (const Sample& s : reference.samples) {
-    c.t.push_back(s.t);
-    for (Signal signal : all_signals) c.signals[signal].push_back(value(s, signal));
-  }
-  return c;
-}
-
 /// A touch of the flanks `depth` rad deep at time `at` (in free flight).
 void add_touch_at(double at, double eps, double depth, verify::CircuitTrace& c) {
   auto& x = c.signals.at(Signal::dphi);
@@ -169,13 +159,13 @@ TEST_CASE("a touch below the machine's resolution is grazing, a real extra or mi
   const double resolution = 1e-4;  // rad beyond ε
   const verify::MatchLimits limits{resolution, 0.005 * scene.duration, scene.duration};
 
-  const verify::ImpactMatch perfect = verify::match_impacts(reference, as_circuit(reference), model, limits);
+  const verify::ImpactMatch perfect = verify::match_impacts(reference, testing::perfect_circuit(reference), model, limits);
   CHECK(perfect.impacts.size() == 3);
   CHECK(perfect.circuit_count == 3);
   CHECK(perfect.missing() == 0);
   CHECK(perfect.extra() == 0);
 
-  verify::CircuitTrace grazed = as_circuit(reference);
+  verify::CircuitTrace grazed = testing::perfect_circuit(reference);
   add_touch(reference, eps, 0.5 * resolution, grazed);
   const verify::ImpactMatch graze = verify::match_impacts(reference, grazed, model, limits);
   CHECK(graze.circuit_count == 4);
@@ -184,24 +174,24 @@ TEST_CASE("a touch below the machine's resolution is grazing, a real extra or mi
   CHECK(graze.impacts.back().grazing);
   CHECK(graze.impacts.back().depth == Approx(0.5 * resolution));
 
-  verify::CircuitTrace bounced = as_circuit(reference);
+  verify::CircuitTrace bounced = testing::perfect_circuit(reference);
   add_touch(reference, eps, 100 * resolution, bounced);
   const verify::ImpactMatch bounce = verify::match_impacts(reference, bounced, model, limits);
   CHECK(bounce.extra() == 1);
   CHECK(!bounce.impacts.back().grazing);
 
   // The same touch within the time tolerance of the run's end: its partner may lie beyond the run.
-  verify::CircuitTrace late = as_circuit(reference);
+  verify::CircuitTrace late = testing::perfect_circuit(reference);
   add_touch_at(scene.duration - 0.5 * limits.time_tolerance, eps, 100 * resolution, late);
   const verify::ImpactMatch last = verify::match_impacts(reference, late, model, limits);
   CHECK(last.circuit_count == 4);
   CHECK(last.extra() == 0);
   CHECK(last.impacts.back().near_end);
-  verify::CircuitTrace earlier = as_circuit(reference);
+  verify::CircuitTrace earlier = testing::perfect_circuit(reference);
   add_touch_at(scene.duration - 2 * limits.time_tolerance, eps, 100 * resolution, earlier);
   CHECK(verify::match_impacts(reference, earlier, model, limits).extra() == 1);
 
-  verify::CircuitTrace slack = as_circuit(reference);
+  verify::CircuitTrace slack = testing::perfect_circuit(reference);
   for (double& x : slack.signals.at(Signal::dphi)) x *= 0.5;  // never reaches the flanks
   const verify::ImpactMatch none = verify::match_impacts(reference, slack, model, limits);
   CHECK(none.missing() == 3);
