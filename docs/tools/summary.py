@@ -23,8 +23,8 @@ def figures(path):
             check = figure["verify"]
             print(f"Bild {figure['bild']}: {numbers['impacts']} impact(s), restitution {min(k):.3f}…{max(k):.3f}, "
                   f"final speeds {speeds[0]:.4f} and {speeds[1]:.4f} rad/s, "
-                  f"momentum lost {100 * numbers['momentum_lost_fraction']:.1f} %, "
-                  f"energy lost {numbers['energy_lost']:.3f} J, "
+                  f"momentum to friction {numbers['friction_impulse']:.3f} N·m·s, "
+                  f"energy dissipated {numbers['dissipated']:.3f} J, "
                   f"circuit within {100 * check['worst_error']:.4f} % ({'pass' if check['passed'] else 'FAIL'})")
 
 

@@ -55,6 +55,7 @@ void measure_reference(const Scene& scene, const BenchOptions& o, const std::str
   const RunSpec grid = run_spec(scene);
   RunSpec coarse = grid;
   coarse.output_step = scene.duration;  // time the solver, not the output grid
+  coarse.balance = false;               // nor the energy balance
   const auto scales = full_scales(scene);
 
   auto report = [&](const std::string& what) {

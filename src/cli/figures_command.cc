@@ -57,7 +57,7 @@ int run_figures(const std::vector<std::string>& args) {
                        "speeds over time, exact reference and ideal circuit (ngspice) together, the\n"
                        "momentum mean marked in Bild 5, the scene's values in the caption. Writes\n"
                        "DIR/bild5a.png … DIR/bild6c.png and DIR/figures.json (the numbers: mean\n"
-                       "speed, restitution per impact, momentum and energy lost, verify error).",
+                       "speed, restitution per impact, energy and momentum balances, verify error).",
                        options, {"gearpatch figures -o docs/figures"}, vm, false))
     return 0;
   if (vm.count("scene")) throw Error("figures takes no SCENE: it reads --scenes DIR");

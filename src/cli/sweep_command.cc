@@ -66,7 +66,8 @@ int run_sweep(const std::vector<std::string>& args) {
                        "Runs the reference model (and with --verify the circuit) at every point of\n"
                        "the swept values and tabulates per point: impacts, the restitution achieved,\n"
                        "peak tooth torque and twist, settling time to the common speed, mean speed,\n"
-                       "energy and momentum lost, and the verify verdict. Points run in parallel\n"
+                       "the energy balance (drive and load work, dissipated, change; J) and the\n"
+                       "momentum change with the balance's residual, and the verify verdict. Points run in parallel\n"
                        "(--jobs); --job-list writes them for GNU Parallel or Slurm instead. Exit\n"
                        "status 0: done, 1: a verified point failed, 2: bad input (nothing run),\n"
                        "3: a point could not be run (named in the table).",

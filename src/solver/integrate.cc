@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "common/error.h"
+#include "solver/balance_recorder.h"
 #include "solver/event_locator.h"
 
 namespace gearpatch {
@@ -371,7 +372,10 @@ Trajectory simulate(const GearModel& model, const GearState& initial, const RunS
   // Event samples fill what the row limit leaves after the grid.
   TrajectoryRecorder recorder(model, trajectory,
                               static_cast<std::size_t>(RunSpec::max_rows - spec.rows()));
-  integrate(model, *stepper, initial, spec, recorder);
+  BalanceRecorder balance(model, initial);  // on a grid of its own: the start and the end
+  integrate(model, *stepper, initial, spec, recorder,
+            spec.balance ? std::vector<Output>{Output{spec.duration, balance}} : std::vector<Output>{});
+  if (spec.balance) trajectory.balance = balance.balance();
   return trajectory;
 }
 

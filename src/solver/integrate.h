@@ -17,6 +17,9 @@ struct RunSpec {
   double output_step = 1e-3;
   std::size_t max_events = 5'000'000;
   std::size_t max_steps = 100'000'000;  ///< intervals the segments are walked in
+  /// simulate() integrates the energy and momentum balances (Trajectory::balance)
+  /// on the same run; off to time the solver alone.
+  bool balance = true;
 
   /// The most output rows a run may have: a row costs about 130 bytes on its
   /// way to a CSV (the sample and its text), so 1e7 rows take 1.3 GB.

@@ -72,7 +72,7 @@ std::string summary_text(const Trajectory& t, std::size_t most_contacts, std::op
     text += fmt::format("  {:<8} {:.9g} {} at t = {:.9g} s\n", to_string(s), e.value, unit(s), e.t);
   }
   if (load_ratio) text += load_text(t, most_contacts, *load_ratio);
-  return text;
+  return text + balance_text(t.balance);
 }
 
 std::string summary_json(const Trajectory& t, std::optional<double> load_ratio) {
@@ -99,7 +99,8 @@ std::string summary_json(const Trajectory& t, std::optional<double> load_ratio) 
   nlohmann::json peaks;
   for (Signal s : all_signals) peaks[to_string(s)] = to_json(peak(t.peaks, s));
   nlohmann::json j = {{"closed_form", t.closed_form}, {"solver", t.closed_form ? "exact" : "adaptive"},
-                      {"shaft", "primary (secondary referred to it)"}, {"contacts", contacts}, {"peaks", peaks}};
+                      {"shaft", "primary (secondary referred to it)"}, {"contacts", contacts}, {"peaks", peaks},
+                      {"balance", balance_json(t.balance)}};
   if (load_ratio) {
     const double i = *load_ratio;
     const SignalPeaks& p = t.peaks;

@@ -13,7 +13,8 @@ namespace gearpatch {
 /// run's peak of every signal, all from the closed form (trajectory.h), on
 /// the primary shaft (the secondary referred to it); with a `load_ratio`
 /// i = φ̇p/φ̇load also on the load shaft (speed φ̇s/i, twist Δφ/i, tooth
-/// torque at the output i·M0). As text for the terminal (the first
+/// torque at the output i·M0), and the run's energy and momentum balances
+/// (energy_balance.h). As text for the terminal (the first
 /// `most_contacts` contacts) ...
 std::string summary_text(const Trajectory& trajectory, std::size_t most_contacts = 20,
                          std::optional<double> load_ratio = std::nullopt);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "model/gear_model.h"
+#include "solver/energy_balance.h"
 #include "solver/mode_extrema.h"
 #include "solver/segment.h"
 
@@ -66,6 +67,9 @@ struct Trajectory {
   std::vector<Sample> event_samples;  ///< the state just after each event, in order
   std::vector<ContactRecord> contacts;
   SignalPeaks peaks;
+  /// Energy and momentum of the run as balances, integrated on the solver's
+  /// own solution (solver/balance_recorder.h).
+  RunBalance balance;
   /// True when contacts and peaks come from the closed form (exact solver);
   /// the adaptive solver fills them from its dense output.
   bool closed_form = false;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "circuit/block_library.h"
 #include "scene/scene_inputs.h"
@@ -15,7 +16,31 @@ namespace {
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double settled_fraction = 0.01;
 
-double energy(const GearModel& model, const GearState& s) { return model.kinetic_energy(s) + model.spring_energy(s); }
+double term(const Balance& b, const char* key) {
+  const BalanceTerm* t = b.find(key);
+  return t ? t->value : 0.0;
+}
+
+double residual_fraction(const Balance& b) {
+  return b.scale() > 0 ? std::abs(b.residual()) / b.scale() : 0.0;
+}
+
+/// The balance's totals: every momentum row but the supply, the change and the load is friction's.
+void balance_figures(const RunBalance& b, PointFigures& f) {
+  f.drive_work = term(b.energy, "drive");
+  f.load_work = term(b.energy, "load") + term(b.energy, "reactive_load");
+  f.dissipated = b.energy.dissipated() - term(b.energy, "reactive_load");
+  f.energy_change = term(b.energy, "kinetic_change") + term(b.energy, "spring_change");
+  f.energy_residual = b.energy.residual();
+  f.drive_impulse = term(b.momentum, "drive");
+  f.load_impulse = term(b.momentum, "load") + term(b.momentum, "reactive_load");
+  f.momentum_change = term(b.momentum, "momentum_change");
+  for (const BalanceTerm& t : b.momentum.terms)
+    if (t.key != "drive" && t.key != "momentum_change" && t.key != "load" && t.key != "reactive_load")
+      f.friction_impulse += t.value;
+  f.momentum_residual = b.momentum.residual();
+  f.residual_fraction = std::max(residual_fraction(b.energy), residual_fraction(b.momentum));
+}
 
 /// The settling time: the first output row (grid or event) after which
 /// |φ̇p − φ̇s| stays within `settled_fraction` of its largest value; NaN if
@@ -42,12 +67,21 @@ double achieved_restitution(const ContactRecord& c) {
   return before != 0 && std::abs(after) <= 1e-9 * std::abs(before) ? -after / before : nan;
 }
 
+/// The balance's figures by their JSON names.
+const std::pair<const char*, double PointFigures::*> balance_fields[] = {
+    {"drive_work", &PointFigures::drive_work},           {"load_work", &PointFigures::load_work},
+    {"dissipated", &PointFigures::dissipated},           {"energy_change", &PointFigures::energy_change},
+    {"energy_residual", &PointFigures::energy_residual}, {"drive_impulse", &PointFigures::drive_impulse},
+    {"load_impulse", &PointFigures::load_impulse},       {"friction_impulse", &PointFigures::friction_impulse},
+    {"momentum_change", &PointFigures::momentum_change}, {"momentum_residual", &PointFigures::momentum_residual},
+    {"residual_fraction", &PointFigures::residual_fraction}};
+
 double json_number(const nlohmann::json& j) { return j.is_null() ? nan : j.get<double>(); }
 nlohmann::json number_json(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace
 
-PointFigures point_figures(const GearModel& model, const GearState& initial, const Trajectory& trajectory) {
+PointFigures point_figures(const GearModel& model, const GearState& /*initial*/, const Trajectory& trajectory) {
   PointFigures f;
   for (const ContactRecord& c : trajectory.contacts) {
     if (c.impact) ++f.impacts;
@@ -60,23 +94,19 @@ PointFigures point_figures(const GearModel& model, const GearState& initial, con
   const GearParameters& p = model.parameters();
   f.settling_time = settling_time(trajectory);
   f.momentum_mean = model.momentum(end) / (p.inertia_primary + p.inertia_secondary);
-  f.energy_lost = energy(model, initial) - energy(model, end);
-  f.momentum_lost = model.momentum(initial) - model.momentum(end);
-  const double p0 = model.momentum(initial);
-  f.momentum_lost_fraction = p0 != 0 ? f.momentum_lost / p0 : nan;
+  balance_figures(trajectory.balance, f);
   return f;
 }
 
 nlohmann::json to_json(const PointFigures& f) {
-  return {{"impacts", f.impacts},
-          {"restitution", f.restitution},
-          {"peak_torque", f.peak_torque},
-          {"peak_twist", f.peak_twist},
-          {"settling_time", number_json(f.settling_time)},
-          {"momentum_mean", f.momentum_mean},
-          {"energy_lost", f.energy_lost},
-          {"momentum_lost", f.momentum_lost},
-          {"momentum_lost_fraction", number_json(f.momentum_lost_fraction)}};
+  nlohmann::json j = {{"impacts", f.impacts},
+                      {"restitution", f.restitution},
+                      {"peak_torque", f.peak_torque},
+                      {"peak_twist", f.peak_twist},
+                      {"settling_time", number_json(f.settling_time)},
+                      {"momentum_mean", f.momentum_mean}};
+  for (const auto& [key, field] : balance_fields) j[key] = f.*field;
+  return j;
 }
 
 PointFigures figures_from_json(const nlohmann::json& j) {
@@ -87,9 +117,7 @@ PointFigures figures_from_json(const nlohmann::json& j) {
   f.peak_twist = j.at("peak_twist").get<double>();
   f.settling_time = json_number(j.at("settling_time"));
   f.momentum_mean = j.at("momentum_mean").get<double>();
-  f.energy_lost = j.at("energy_lost").get<double>();
-  f.momentum_lost = j.at("momentum_lost").get<double>();
-  f.momentum_lost_fraction = json_number(j.at("momentum_lost_fraction"));
+  for (const auto& [key, field] : balance_fields) f.*field = j.at(key).get<double>();
   return f;
 }
 

@@ -30,12 +30,27 @@ struct PointFigures {
   /// the run's output rows, events included); NaN if it is outside at the end.
   double settling_time = 0;
   double momentum_mean = 0;         ///< rad/s, (Θp·φ̇p + Θs·φ̇s)/(Θp+Θs) at the end
-  double energy_lost = 0;           ///< J, kinetic + elastic at the start minus at the end (no drive)
-  double momentum_lost = 0;         ///< N·m·s, Θp·φ̇p + Θs·φ̇s at the start minus at the end
-  double momentum_lost_fraction = 0;  ///< of the initial momentum (NaN if that is 0)
+  // The run's energy balance (solver/energy_balance.h), J:
+  // drive_work = energy_change + load_work + dissipated + energy_residual.
+  double drive_work = 0;            ///< ∫M_a·φ̇p dt (the motor line included)
+  double load_work = 0;             ///< on the load, active and reactive
+  double dissipated = 0;            ///< friction, contact damping and self-locking catches, >= 0
+  double energy_change = 0;         ///< kinetic + spring energy, end − start
+  double energy_residual = 0;
+  // Its momentum balance, N·m·s, Θp·φ̇p + Θs·φ̇s with the secondary referred to the primary:
+  // drive_impulse = momentum_change + load_impulse + friction_impulse + momentum_residual.
+  double drive_impulse = 0;
+  double load_impulse = 0;
+  double friction_impulse = 0;      ///< bearings (sliding and holding), viscous, tooth friction, lock
+  double momentum_change = 0;
+  double momentum_residual = 0;
+  /// The larger of the two residuals, each as a fraction of its balance's
+  /// scale (the largest term, or the amount stored if larger).
+  double residual_fraction = 0;
 };
 
-/// The figures of a reference run of `model` from `initial`.
+/// The figures of a reference run of `model` from `initial` (its balance
+/// starts there: Trajectory::balance).
 PointFigures point_figures(const GearModel& model, const GearState& initial, const Trajectory& trajectory);
 
 /// What a point runs besides the reference.

@@ -42,8 +42,17 @@ const std::vector<Column>& columns() {
       {"peak_twist", "rad", [](const PointFigures& f) { return f.peak_twist; }},
       {"settling_time", "s", [](const PointFigures& f) { return f.settling_time; }},
       {"momentum_mean", "rad/s", [](const PointFigures& f) { return f.momentum_mean; }},
-      {"energy_lost", "J", [](const PointFigures& f) { return f.energy_lost; }},
-      {"momentum_lost", "N·m·s", [](const PointFigures& f) { return f.momentum_lost; }},
+      {"drive_work", "J", [](const PointFigures& f) { return f.drive_work; }},
+      {"load_work", "J", [](const PointFigures& f) { return f.load_work; }},
+      {"dissipated", "J", [](const PointFigures& f) { return f.dissipated; }},
+      {"energy_change", "J", [](const PointFigures& f) { return f.energy_change; }},
+      {"energy_residual", "J", [](const PointFigures& f) { return f.energy_residual; }},
+      {"drive_impulse", "N·m·s", [](const PointFigures& f) { return f.drive_impulse; }},
+      {"load_impulse", "N·m·s", [](const PointFigures& f) { return f.load_impulse; }},
+      {"friction_impulse", "N·m·s", [](const PointFigures& f) { return f.friction_impulse; }},
+      {"momentum_change", "N·m·s", [](const PointFigures& f) { return f.momentum_change; }},
+      {"momentum_residual", "N·m·s", [](const PointFigures& f) { return f.momentum_residual; }},
+      {"residual_fraction", "", [](const PointFigures& f) { return f.residual_fraction; }},
   };
   return list;
 }
@@ -104,9 +113,9 @@ std::string to_text(const SweepTable& t) {
     while (!line.empty() && line.back() == ' ') line.pop_back();
     return line + "\n";
   };
-  std::string out = row("point", {"impacts", "k achieved", "peak M0", "peak twist", "settled", "mean", "E lost",
-                                  "p lost", t.study.options.verify ? "verify" : ""});
-  out += row("", {"", "(mean)", "N·m", "rad", "s", "rad/s", "J", "N·m·s"});
+  std::string out = row("point", {"impacts", "k achieved", "peak M0", "peak twist", "settled", "mean", "W drive",
+                                  "W load", "dissipated", "ΔE", "Δp", "residual", t.study.options.verify ? "verify" : ""});
+  out += row("", {"", "(mean)", "N·m", "rad", "s", "rad/s", "J", "J", "J", "J", "N·m·s", "(of max)"});
   for (const runs::JobOutcome& o : t.points) {
     if (!o.result) {
       out += row(o.label, {"FAILED"});
@@ -115,7 +124,8 @@ std::string to_text(const SweepTable& t) {
     const PointFigures f = figures_from_json(o.result->at("figures"));
     out += row(o.label, {std::to_string(f.impacts), number(mean(f.restitution)), number(f.peak_torque),
                          number(f.peak_twist), number(f.settling_time), number(f.momentum_mean),
-                         number(f.energy_lost), number(f.momentum_lost), verdict_text(o)});
+                         number(f.drive_work), number(f.load_work), number(f.dissipated), number(f.energy_change),
+                         number(f.momentum_change), fmt::format("{:.1e}", f.residual_fraction), verdict_text(o)});
   }
   out += fmt::format("{} points, {} failed\n", t.points.size(), t.failed());
   for (const runs::JobOutcome& o : t.points)
@@ -197,7 +207,9 @@ std::string figures_plot(const SweepTable& t, const std::string& format) {
   };
   std::vector<Panel> panels;
   for (const Column& c : columns())
-    if (std::string(c.name) != "restitution_min" && std::string(c.name) != "restitution_max")
+    if (const std::string name = c.name;
+        name != "restitution_min" && name != "restitution_max" && name.find("residual") == std::string::npos &&
+        name.find("impulse") == std::string::npos)
       panels.push_back({c.name, c.unit, [of = c.of](const runs::JobOutcome& o) {
                           return of(figures_from_json(o.result->at("figures")));
                         }});

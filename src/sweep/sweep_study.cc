@@ -128,14 +128,18 @@ nlohmann::json result_schema() {
   static const nlohmann::json figures = nlohmann::json::parse(R"({
     "type": "object", "additionalProperties": false,
     "required": ["impacts", "restitution", "peak_torque", "peak_twist", "settling_time", "momentum_mean",
-                 "energy_lost", "momentum_lost", "momentum_lost_fraction"],
+                 "drive_work", "load_work", "dissipated", "energy_change", "energy_residual", "drive_impulse",
+                 "load_impulse", "friction_impulse", "momentum_change", "momentum_residual", "residual_fraction"],
     "properties": {
       "impacts": {"type": "integer", "minimum": 0, "maximum": 1e9},
       "restitution": {"type": "array", "maxItems": 10000000, "items": {"type": "number"}},
       "peak_torque": {"type": "number"}, "peak_twist": {"type": "number"},
       "settling_time": {"type": ["number", "null"]}, "momentum_mean": {"type": "number"},
-      "energy_lost": {"type": "number"}, "momentum_lost": {"type": "number"},
-      "momentum_lost_fraction": {"type": ["number", "null"]}
+      "drive_work": {"type": "number"}, "load_work": {"type": "number"}, "dissipated": {"type": "number"},
+      "energy_change": {"type": "number"}, "energy_residual": {"type": "number"},
+      "drive_impulse": {"type": "number"}, "load_impulse": {"type": "number"},
+      "friction_impulse": {"type": "number"}, "momentum_change": {"type": "number"},
+      "momentum_residual": {"type": "number"}, "residual_fraction": {"type": "number"}
     }
   })");
   static const nlohmann::json body = nlohmann::json::parse(R"({
