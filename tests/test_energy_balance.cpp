@@ -55,7 +55,7 @@ TEST_CASE("the balances close on the drive scenes", "[balance]") {
   // A reactive load (conveyor), an active load through a gearbox, a drive
   // profile (reversal), the capped law (capped), Stribeck bearings on the
   // adaptive solver (stribeck), the motor line (startup).
-  for (const std::string& name : {"conveyor", "gearbox", "reversal", "capped", "stribeck", "startup"})
+  for (const char* name : {"conveyor", "gearbox", "reversal", "capped", "stribeck", "startup"})
     check_closes(load_scene(testing::source_path("scenes/drive/" + std::string(name) + ".ini")));
 }
 
@@ -120,7 +120,7 @@ TEST_CASE("a constant drive on a frictionless gear does the closed form's work",
   // u = M/(Θp·κ)·(1 − cos √κ t); the mean speed grows at M/(Θp + Θs). The drive's
   // work is M·φp(T) with φp = φ̄ + Θs/(Θp + Θs)·u, its impulse M·T.
   const double M = 2, tp = 1.5, ts = 0.5, c = 80, T = 1.7;
-  const Scene s = parse_scene("[gear]\ninertia_primary = 1.5\ninertia_secondary = 0.5\nstiffness = 80\n"
+  const Scene s = parse_scene("[gear]\ninertia_primary = 1.5\ninertia_secondary = 0.5\nstiffness = 80\nrestitution = 1\n"
                               "[drive]\ntorque = 2\n[run]\nduration = 1.7\n",
                               "constant drive");
   const Trajectory t = run(s);
