@@ -112,12 +112,11 @@ std::string text(const Balance& b, const std::string& what) {
                                            : "the rows sum to 0 (no drive)");
   for (const BalanceTerm& t : b.terms)
     out += fmt::format("  {:<54} {:>16.9g}{}\n", t.label, t.value, t.dissipation ? "  (>= 0)" : "");
-  const double scale = b.scale();
-  out += fmt::format("  {:<54} {:>16.3g}", "residual", b.residual());
-  if (scale > 0)
-    out += fmt::format("  ({:.2g} of the {})", std::abs(b.residual()) / scale,
-                       scale > b.largest() ? "amount stored" : "largest term");
-  return out + "\n";
+  // Below 1e-12 the residual is rounding, which differs from compiler to compiler.
+  const double scale = b.scale(), fraction = scale > 0 ? std::abs(b.residual()) / scale : 0.0;
+  const std::string of = scale > b.largest() ? "the amount stored" : "the largest term";
+  if (fraction < 1e-12) return out + fmt::format("  residual: below 1e-12 of {}\n", of);
+  return out + fmt::format("  {:<54} {:>16.3g}  ({:.2g} of {})\n", "residual", b.residual(), fraction, of);
 }
 
 nlohmann::json json(const Balance& b) {

@@ -57,6 +57,12 @@ const std::vector<Column>& columns() {
   return list;
 }
 
+/// The balance's residual as a fraction of its scale; below 1e-12 it is
+/// rounding, which differs from compiler to compiler.
+std::string residual_text(double fraction) {
+  return fraction < 1e-12 ? std::string("<1e-12") : fmt::format("{:.1e}", fraction);
+}
+
 std::string number(double v) { return std::isfinite(v) ? fmt::format("{:.6g}", v) : std::string("-"); }
 
 const nlohmann::json* verdict(const runs::JobOutcome& o) {
@@ -125,7 +131,7 @@ std::string to_text(const SweepTable& t) {
     out += row(o.label, {std::to_string(f.impacts), number(mean(f.restitution)), number(f.peak_torque),
                          number(f.peak_twist), number(f.settling_time), number(f.momentum_mean),
                          number(f.drive_work), number(f.load_work), number(f.dissipated), number(f.energy_change),
-                         number(f.momentum_change), fmt::format("{:.1e}", f.residual_fraction), verdict_text(o)});
+                         number(f.momentum_change), residual_text(f.residual_fraction), verdict_text(o)});
   }
   out += fmt::format("{} points, {} failed\n", t.points.size(), t.failed());
   for (const runs::JobOutcome& o : t.points)
