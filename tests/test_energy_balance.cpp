@@ -45,13 +45,13 @@ bool has_row(const Balance& b, const std::string& key) { return b.find(key) != n
 
 }  // namespace
 
-TEST_CASE("the balances close on the example scenes", "[balance]") {
+TEST_CASE("the balances close on the example scenes", "[solver][balance]") {
   // Undriven (bild5b), bearing friction (bild6a), tooth friction (bild6b),
   // self-locking (bild6c), driven against two bearings (driven).
   for (const std::string& name : testing::example_scenes()) check_closes(testing::example_scene(name));
 }
 
-TEST_CASE("the balances close on the drive scenes", "[balance]") {
+TEST_CASE("the balances close on the drive scenes", "[solver][balance]") {
   // A reactive load (conveyor), an active load through a gearbox, a drive
   // profile (reversal), the capped law (capped), Stribeck bearings on the
   // adaptive solver (stribeck), the motor line (startup).
@@ -59,7 +59,7 @@ TEST_CASE("the balances close on the drive scenes", "[balance]") {
     check_closes(load_scene(testing::source_path("scenes/drive/" + std::string(name) + ".ini")));
 }
 
-TEST_CASE("the balances close with bearing and tooth friction and a load torque together", "[balance]") {
+TEST_CASE("the balances close with bearing and tooth friction and a load torque together", "[solver][balance]") {
   const Scene s = parse_scene(testing::gear_scene("restitution = 0.6\nbacklash = 0.1",
                                                   "[friction]\nbearing_primary = 0.2\nbearing_secondary = 0.3\n"
                                                   "mesh_efficiency = 0.7\n[drive]\ntorque = 3\nload_torque = 0.8\n"
@@ -74,7 +74,7 @@ TEST_CASE("the balances close with bearing and tooth friction and a load torque 
   CHECK(t.balance.energy.find("contact_damping")->value > 0);
 }
 
-TEST_CASE("the balances close on a fresh random set, every feature class", "[balance]") {
+TEST_CASE("the balances close on a fresh random set, every feature class", "[solver][balance]") {
   // Seed 27110531: drawn for this test, not tuned on.
   for (const RandomScene& r : random_scenes(27110531, 7)) {
     INFO(r.name << " (" << to_string(r.feature) << ")");
@@ -82,7 +82,7 @@ TEST_CASE("the balances close on a fresh random set, every feature class", "[bal
   }
 }
 
-TEST_CASE("a frictionless undriven scene with k = 1 keeps its energy and has no friction rows", "[balance]") {
+TEST_CASE("a frictionless undriven scene with k = 1 keeps its energy and has no friction rows", "[solver][balance]") {
   const Trajectory t = run(testing::example_scene("bild5a"));
   const Balance& e = t.balance.energy;
   // No drive, no damper (k = 1), no friction: kinetic and spring energy only.
@@ -95,7 +95,7 @@ TEST_CASE("a frictionless undriven scene with k = 1 keeps its energy and has no 
   CHECK(std::abs(t.balance.momentum.terms[0].value) <= 1e-12);
 }
 
-TEST_CASE("the contact damping's loss goes to zero as k goes to one", "[balance]") {
+TEST_CASE("the contact damping's loss goes to zero as k goes to one", "[solver][balance]") {
   double previous = INFINITY;
   for (double k : {0.9, 0.99, 0.999}) {
     const Trajectory t =
@@ -115,7 +115,7 @@ TEST_CASE("the contact damping's loss goes to zero as k goes to one", "[balance]
   }
 }
 
-TEST_CASE("a constant drive on a frictionless gear does the closed form's work", "[balance]") {
+TEST_CASE("a constant drive on a frictionless gear does the closed form's work", "[solver][balance]") {
   // No backlash, no damping: the twist obeys u'' + κu = M/Θp with κ = c(1/Θp + 1/Θs),
   // u = M/(Θp·κ)·(1 − cos √κ t); the mean speed grows at M/(Θp + Θs). The drive's
   // work is M·φp(T) with φp = φ̄ + Θs/(Θp + Θs)·u, its impulse M·T.
@@ -133,7 +133,7 @@ TEST_CASE("a constant drive on a frictionless gear does the closed form's work",
   check_closes(t.balance.energy, "energy");
 }
 
-TEST_CASE("a constant drive through the play does M times the primary's travel", "[balance]") {
+TEST_CASE("a constant drive through the play does M times the primary's travel", "[solver][balance]") {
   // With backlash and damping the primary's travel is the mean's M·T²/(2(Θp + Θs)) plus
   // Θs/(Θp + Θs) of the twist's change, whatever the impacts did in between.
   const Scene s = parse_scene(testing::gear_scene("restitution = 0.5\nbacklash = 0.2", "[drive]\ntorque = 2"),
@@ -146,7 +146,7 @@ TEST_CASE("a constant drive through the play does M times the primary's travel",
   check_closes(t.balance.energy, "energy");
 }
 
-TEST_CASE("the summary shows the balances with their residual", "[balance]") {
+TEST_CASE("the summary shows the balances with their residual", "[solver][balance]") {
   const Trajectory t = run(testing::example_scene("driven"));
   const std::string text = summary_text(t);
   CHECK_THAT(text, Catch::Contains("energy balance (J): the drive's supply = the sum of the rows below it"));

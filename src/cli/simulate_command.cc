@@ -35,7 +35,8 @@ int run_simulate(const std::vector<std::string>& args) {
       ("out,o", po::value<std::string>(), "write the CSV t,omega_p,omega_s,dphi,m0,event (SI units, the secondary referred to the primary shaft; a row at each event instant, event naming it) to FILE (default stdout; - is stdout); a scene with a load shaft (gear.ratio, [load]) gets the header t[s],omega_p[rad/s],omega_s[rad/s],dphi[rad],m0[N·m],omega_load[rad/s],twist_load[rad],m0_load[N·m],event: the load shaft's speed omega_s/i, twist dphi/i and tooth torque at the output i·m0 beside the referred ones")
       ("events", po::value<std::string>(), "CSV file of mode changes: t,kind,omega_p,omega_s,dphi,mode")
       ("summary", po::value<std::string>(), "JSON file of each contact (impact time, speeds before and "
-       "after, restitution, peak torque and twist) and the run's peaks, from the closed form ('-': "
+       "after, restitution, peak torque and twist), the run's peaks, from the closed form, and the "
+       "energy and momentum balances with their residual ('-': "
        "stdout; without it, a text summary goes to stdout when --out is a file)");
   po::variables_map vm;
   if (!parse_arguments(args, "usage: gearpatch simulate SCENE [options]\n\n"
