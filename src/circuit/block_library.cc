@@ -153,7 +153,6 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("sw_roff", num(F::switch_roff));
     ctx.set("sw_vh", num(F::switch_vh_mu * u));
     ctx.set("latch_vt", num(0.45 * u));
-    ctx.set("latch_vh", num(u));
     const double w = F::comparator_width_mu * u;
     ctx.set("cmp_width", num(w));
     ctx.set("cmp_width_mu", num(F::comparator_width_mu));
