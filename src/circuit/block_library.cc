@@ -153,6 +153,7 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("sw_roff", num(F::switch_roff));
     ctx.set("sw_vh", num(F::switch_vh_mu * u));
     ctx.set("latch_vt", num(0.2 * u));
+    ctx.set("latch_c", num(1e-3 / m.integrator_constant));  // 1 Ω: 1 ms at k0 = 1/s
     const double w = F::comparator_width_mu * u;
     ctx.set("cmp_width", num(w));
     ctx.set("cmp_width_mu", num(F::comparator_width_mu));
