@@ -152,8 +152,8 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("sw_ron", num(F::switch_ron));
     ctx.set("sw_roff", num(F::switch_roff));
     ctx.set("sw_vh", num(F::switch_vh_mu * u));
-    ctx.set("latch_vt", num(0.45 * u));
-    ctx.set("latch_vh", num(u));
+    ctx.set("latch_vt", num(0.2 * u));
+    ctx.set("latch_c", num(1e-3 / m.integrator_constant));  // 1 Ω: 1 ms at k0 = 1/s
     const double w = F::comparator_width_mu * u;
     ctx.set("cmp_width", num(w));
     ctx.set("cmp_width_mu", num(F::comparator_width_mu));
@@ -200,7 +200,7 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("hsw_vt", num(F::switch_vt));
   ctx.set("hsw_vh", num(F::switch_vh));
   ctx.set("hsw_tau", num(F::switch_tau));
-  ctx.set("hlatch_vt", num(0.45 * vsat));  // as at the ideal level, on the triggers' +-vsat
+  ctx.set("hlatch_vt", num(0.45 * vsat));  // on the triggers' +-vsat
   ctx.set("hlatch_vh", num(vsat));
   ctx.set("hlatch_reset", num(2 * vsat));  // the control while reset: below vt - vh
   ctx.set("hsw_rdel", num(F::switch_rdel));

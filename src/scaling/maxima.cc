@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
+#include <limits>
 #include <utility>
 
 #include "common/error.h"
@@ -89,13 +90,17 @@ struct RelativeMotion {
   double accel = 0;          ///< largest |Δφ̈| outside contact
   double inertia = 0;        ///< Θ of the relative motion in contact
   double entry_speed_sq = 0; ///< largest Δφ̇² on reaching the flank
+  /// Largest Δφ̇² the initial state alone gives the relative motion: the
+  /// initial spring released into Θ with the secondary free (self-locking
+  /// holds it only against the engagement, and the spring pushes it along).
+  double initial_speed_sq = 0;
 };
 
 /// Θ of the relative motion in contact: ΘpΘs/(Θp+Θs) in the paper; with tooth
 /// friction the secondary feels only (1 − k_z)·M0, so 1/(1/Θp + η_z/Θs); with
-/// self-locking the secondary may be held, leaving Θp against a wall.
-double contact_inertia(const GearParameters& p) {
-  if (p.self_locking) return p.inertia_primary;
+/// self-locking and `wall` the secondary may be held, leaving Θp against a wall.
+double contact_inertia(const GearParameters& p, bool wall) {
+  if (p.self_locking && wall) return p.inertia_primary;
   return 1.0 / (1.0 / p.inertia_primary + (1.0 - p.tooth_friction) / p.inertia_secondary);
 }
 
@@ -104,14 +109,15 @@ RelativeMotion relative_motion(const ScalingInput& s, const GearParameters& p, d
   // The paper's M_am/Θp; friction and load may push the same way (extension).
   r.accel = (drive_max + p.bearing_primary) / p.inertia_primary +
             (std::abs(p.load_torque) + p.bearing_secondary) / p.inertia_secondary;
-  r.inertia = contact_inertia(p);
+  r.inertia = contact_inertia(p, true);
   const double rate0 = s.initial.omega_p - s.initial.omega_s;
   GearModel model(p);
   const double twist0 = model.contact_twist(s.initial.dphi);
   // Energy of the relative motion: initial speed, initial spring energy, and
   // the work of the force across the whole play 2ε ((6.11) read as corrected).
-  r.entry_speed_sq = rate0 * rate0 + p.stiffness * twist0 * twist0 / r.inertia +
-                     2 * r.accel * 2 * p.half_backlash;
+  const double play_work = 2 * r.accel * 2 * p.half_backlash;
+  r.entry_speed_sq = rate0 * rate0 + p.stiffness * twist0 * twist0 / r.inertia + play_work;
+  r.initial_speed_sq = rate0 * rate0 + p.stiffness * twist0 * twist0 / contact_inertia(p, false) + play_work;
   return r;
 }
 
@@ -147,10 +153,23 @@ bool has_torques(const GearParameters& p, const Maxima& m) {
   return m.drive_torque > 0 || p.load_torque != 0;
 }
 
+/// How far friction may move the centre-of-mass speed over the run: bearing
+/// and tooth friction are torques of bounded size on one shaft (a shaft held
+/// by its bearing is a wall for the other: random-2701-023's secondary reached
+/// 6.2 times the momentum bound); viscous friction and the self-locking
+/// reaction have no bound but the energy's.
+double friction_gain(const ScalingInput& s, const GearParameters& p, const Maxima& m) {
+  if (p.self_locking || p.viscous_primary != 0 || p.viscous_secondary != 0)
+    return std::numeric_limits<double>::infinity();
+  const double torque = p.bearing_primary + p.bearing_secondary + p.tooth_friction * m.torque;
+  return torque * s.duration / (p.inertia_primary + p.inertia_secondary);
+}
+
 /// Speeds: each shaft's speed is the centre-of-mass speed plus its share of
-/// the relative speed, φ̇p = v + Θs/(Θp+Θs)·Δφ̇, φ̇s = v − Θp/(Θp+Θs)·Δφ̇; v is
-/// fixed by momentum without torques, and gains at most the net drive torque
-/// (after the bearing friction it must overcome) over the run. Without
+/// the relative speed, φ̇p = v + Θs/(Θp+Θs)·Δφ̇, φ̇s = v − Θp/(Θp+Θs)·Δφ̇; v
+/// changes only by friction without torques (friction_gain), and gains at most
+/// the net drive torque (after the bearing friction it must overcome) over the
+/// run with them. Without
 /// torques nothing adds energy, so ½·Θ·φ̇² <= E0 bounds each shaft as well.
 void estimate_speeds(const ScalingInput& s, const GearParameters& p, const MaximaOptions& o, Maxima& m) {
   const double total = p.inertia_primary + p.inertia_secondary;
@@ -162,11 +181,14 @@ void estimate_speeds(const ScalingInput& s, const GearParameters& p, const Maxim
   const double gain =
       std::max(0.0, external - p.bearing_primary - p.bearing_secondary) * s.duration / total;
   const double energy = initial_energy(s, p);
+  const double friction = torques ? 0.0 : friction_gain(s, p, m);
   auto bound = [&](double inertia, double other, double initial, Maximum key) {
-    double w = std::max(std::abs(initial), v0 + gain + other / total * m.relative_speed);
-    std::string how = fmt::format("centre-of-mass speed {:.4g}{} + the shaft's share {:.4g}·Δφ̇m",
+    double w = std::max(std::abs(initial), v0 + gain + friction + other / total * m.relative_speed);
+    std::string how = fmt::format("centre-of-mass speed {:.4g}{}{} + the shaft's share {:.4g}·Δφ̇m",
                                   v0, torques ? fmt::format(" + net drive gain {:.4g} over {:g} s",
-                                                            gain, s.duration) : "", other / total);
+                                                            gain, s.duration) : "",
+                                  friction > 0 ? fmt::format(" + friction's change {:.4g}", friction) : "",
+                                  other / total);
     if (torques && m.relative_speed > w) {  // one shaft may run while the other is held
       w = m.relative_speed;
       how = "Δφ̇m: with a torque one shaft may run while the other is held";
@@ -218,7 +240,10 @@ namespace {
 /// Δφ̇m: (6.11) as corrected, extended by the initial state and the force in contact.
 void estimate_relative_speed(const ScalingInput& s, const GearParameters& p, const RelativeMotion& r,
                              Maxima& m) {
-  m.relative_speed = std::sqrt(r.entry_speed_sq + r.inertia * r.accel * r.accel / p.stiffness);
+  // The spring term with the secondary free (random-2701-003, self-locking and
+  // starting in contact, reaches 5.38 rad/s where Θp alone gives 2.18).
+  m.relative_speed = std::sqrt(std::max(r.entry_speed_sq, r.initial_speed_sq) +
+                               r.inertia * r.accel * r.accel / p.stiffness);
   m.basis[Maximum::relative_speed] =
       "(6.11) as corrected, sqrt(Δφ̇0² + c·Δφ'0²/Θ + 2·a·2ε + Θ·a²/c), a = largest relative "
       "acceleration (M_am + k_Rp)/Θp + (|M_L| + k_Rs)/Θs";

@@ -1,5 +1,6 @@
 #include "solver/trajectory.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fmt/format.h>
 #include <limits>
@@ -77,14 +78,20 @@ void TrajectoryRecorder::interval(double a, double b, const Mode& mode, const Se
     if (mode.contact != Contact::free) extrema.raise(torque_, run.m0);
     return;
   }
-  // The contact's peaks over this interval are the run's there too.
+  // The contact's peaks over this interval are the run's there too. An
+  // interval of no length (a self-locking catch after which the flanks part
+  // in the same instant; the adaptive solver's event location leaves it a
+  // rounding long) has no torque that acts: the pulling d·φ̇p at the stopped
+  // secondary lasts no time, and a lock of bounded reaction never shows it
+  // (its secondary leaves the flank at 2φ̇p − φ̇s(before)).
   ContactRecord& c = out_.contacts.back();
+  c.end = b;
+  c.at_release = extrema.end_state();
+  if (b - a <= 1e-9 * std::max(1.0, std::abs(b))) return;
   extrema.raise(twist, c.twist);
   extrema.raise(torque_, c.torque);
   raise(run.dphi, c.twist);
   raise(run.m0, c.torque);
-  c.end = b;
-  c.at_release = extrema.end_state();
 }
 
 std::vector<Sample> Trajectory::output() const {
