@@ -160,6 +160,10 @@ int run_verify(const std::vector<std::string>& args) {
   if (request.workers < 1) throw Error("--jobs 0: run at least one at a time");
   if (request.budget && vm.count("no-budget")) throw Error("--budget and --no-budget: give one");
   const Scene scene = load_scene(file, machine);
+  if (o.level == circuit::Level::hardware && !o.deck_text) {  // what the machine's offsets allow, before the run
+    request.offsets = tolerance::check_offsets(scene, o, request.workers);
+    for (const std::string& w : request.offsets->warnings()) std::fprintf(stderr, "gearpatch verify: warning: %s\n", w.c_str());
+  }
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   const tolerance::VerdictReport report = tolerance::verify_and_predict(scene, o, request);
