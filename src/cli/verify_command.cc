@@ -106,7 +106,10 @@ int run_verify(const std::vector<std::string>& args) {
                        "physical units and compares it with the reference model. The circuit's\n"
                        "signals, impacts, peaks and restitution are judged against the reference at\n"
                        "the tolerance (--tolerance, else 0.5% ideal, 2% hardware), never at the error\n"
-                       "budget, which --budget prints beside the measurement. Exit status 0:\n"
+                       "budget, which --budget prints beside the measurement. At the hardware level it\n"
+                       "first warns when one amplifier's offset alone, at the largest the machine's\n"
+                       "profile draws, moves a signal beyond the tolerance (measured on copies of the\n"
+                       "deck), naming its panel element and the remedy. Exit status 0:\n"
                        "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
                        "ends short of the run (the deck is kept), 4: internal error. With --measured\n"
                        "FILE it judges an oscilloscope recording of the patched machine instead.",

@@ -221,8 +221,8 @@ std::vector<std::string> OffsetCheck::warnings() const {
 std::string to_text(const OffsetCheck& k) {
   if (!k.skipped.empty()) return fmt::format("offset check: skipped, {}\n", k.skipped);
   std::string t = fmt::format("offset check of {} on {} (before the run: each amplifier's offset alone at {:.3g} mV, "
-                              "both signs, against the deck with perfect components; {} ngspice runs, {:.1f} s)\n",
-                              k.scene, k.machine, 1e3 * k.offset_volts, k.runs, k.seconds);
+                              "both signs, against the deck with perfect components; {} ngspice runs)\n",
+                              k.scene, k.machine, 1e3 * k.offset_volts, k.runs);
   for (const StageOffset& s : k.stages)
     t += fmt::format("  {:<6} {:<14} moves {:<8} {:7.3f} %{}\n", s.element, s.stage, to_string(s.signal), 100 * s.moved,
                      s.moved > k.tolerance ? fmt::format("  beyond the tolerance of {:.3g} %", 100 * k.tolerance) : "");
