@@ -168,6 +168,7 @@ void measure_trim(const Scene& scene, const verify::VerifyOptions& base, unsigne
   k.runs += static_cast<unsigned>(runs.size());
   for (std::size_t j = 0; j < which.size(); ++j)
     if (runs[j].result) k.stages[which[j]].moved_trimmed = farthest(*m.perfect, runs[j]).second;
+    else k.failed.push_back(runs[j].failure);
 }
 
 }  // namespace

@@ -93,8 +93,9 @@ std::string prediction_table(const VerdictReport& v) {
 }  // namespace
 
 std::string to_table(const VerdictReport& v) {
-  std::string t = v.offsets ? to_text(*v.offsets) + "\n" : "";
-  t += verify::measurement_table(v.result);
+  std::string t = verify::measurement_table(v.result);
+  // a check the estimate skipped is in the JSON only
+  if (v.offsets && v.offsets->skipped.empty()) t += to_text(*v.offsets) + "\n";
   if (v.budget) t += prediction_table(v);
   return t + verify::verdict_lines(v.result);
 }

@@ -46,7 +46,7 @@ struct VerdictReport {
 VerdictReport verify_and_predict(const Scene& scene, const verify::VerifyOptions& options,
                                  const VerdictRequest& request);
 
-/// The measurement, the prediction beside it, then the verdict.
+/// The measurement, the offset check (when it measured), the prediction beside it, then the verdict.
 std::string to_table(const VerdictReport& report);
 /// verify's JSON with `measurement` (each signal's error) and `prediction`
 /// (the budget and each signal's predicted error beside it, or null) as
