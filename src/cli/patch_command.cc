@@ -7,6 +7,8 @@
 #include "patching/machine_patch.h"
 #include "patching/patch_picture.h"
 #include "patching/patch_sheet.h"
+#include "runs/pool.h"
+#include "tolerance/offset_check.h"
 #include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
@@ -19,7 +21,9 @@ int run_patch(const std::vector<std::string>& args) {
       ("dot", po::value<std::string>(), "write the Graphviz source of the picture to FILE")
       ("autoscale", "scale from the reference model's simulated peaks plus 10 % headroom (as settings --autoscale)")
       ("level", po::value<std::string>()->default_value("hardware"), "the level the comparator thresholds and "
-       "bands are set for: hardware (the machine a person wires) or ideal (the sheet the ideal run checks)");
+       "bands are set for: hardware (the machine a person wires) or ideal (the sheet the ideal run checks)")
+      ("no-offset-check", "at the hardware level, skip the offset check (a few ngspice runs that warn when one "
+       "amplifier's offset alone moves a signal beyond 2 %, naming it and the remedy)");
   add_output_options(options, "the patch sheet", "the patch");
   add_machine_option(options);
   add_scaling_option(options);
@@ -65,9 +69,22 @@ int run_patch(const std::vector<std::string>& args) {
   o.lock_catch = level == circuit::Level::ideal;
   const Scene scene = load_scene(file, chosen_machine(vm));
   const patching::MachinePatch p = patching::patch_on_machine(make_patch(scene, o), level);
+  nlohmann::json offsets = nullptr;  // what the machine's offsets allow, measured before anyone wires it
+  if (level == circuit::Level::hardware && !vm.count("no-offset-check")) {
+    verify::VerifyOptions vo;
+    vo.autoscale = o.autoscale;
+    vo.paper_scaling = o.method == ScalingMethod::paper;
+    const tolerance::OffsetCheck check = tolerance::check_offsets(scene, vo, runs::core_count());
+    for (const std::string& w : check.warnings()) std::fprintf(stderr, "gearpatch patch: warning: %s\n", w.c_str());
+    offsets = tolerance::to_json(check);
+  }
   const std::string sheet = patching::to_text(p);
   if (outputs.has("--out")) outputs.stage("--out", sheet);
-  if (outputs.has("--json")) outputs.stage("--json", patching::to_json(p));
+  if (outputs.has("--json")) {
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(patching::to_json(p));  // the sheet's key order
+    j["offset_check"] = nlohmann::ordered_json::parse(offsets.dump());
+    outputs.stage("--json", j.dump(2) + "\n");
+  }
   const std::string dot = patching::to_dot(p.wiring);
   if (outputs.has("--dot")) outputs.stage("--dot", dot);
   if (outputs.has("--picture")) outputs.stage("--picture", patching::draw_with_dot(dot, picture_as));

@@ -106,7 +106,10 @@ int run_verify(const std::vector<std::string>& args) {
                        "physical units and compares it with the reference model. The circuit's\n"
                        "signals, impacts, peaks and restitution are judged against the reference at\n"
                        "the tolerance (--tolerance, else 0.5% ideal, 2% hardware), never at the error\n"
-                       "budget, which --budget prints beside the measurement. Exit status 0:\n"
+                       "budget, which --budget prints beside the measurement. At the hardware level it\n"
+                       "first warns when one amplifier's offset alone, at the largest the machine's\n"
+                       "profile draws, moves a signal beyond the tolerance (measured on copies of the\n"
+                       "deck), naming its panel element and the remedy. Exit status 0:\n"
                        "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
                        "ends short of the run (the deck is kept), 4: internal error. With --measured\n"
                        "FILE it judges an oscilloscope recording of the patched machine instead.",
@@ -160,6 +163,10 @@ int run_verify(const std::vector<std::string>& args) {
   if (request.workers < 1) throw Error("--jobs 0: run at least one at a time");
   if (request.budget && vm.count("no-budget")) throw Error("--budget and --no-budget: give one");
   const Scene scene = load_scene(file, machine);
+  if (o.level == circuit::Level::hardware && !o.deck_text) {  // what the machine's offsets allow, before the run
+    request.offsets = tolerance::check_offsets(scene, o, request.workers);
+    for (const std::string& w : request.offsets->warnings()) std::fprintf(stderr, "gearpatch verify: warning: %s\n", w.c_str());
+  }
   std::fprintf(stderr, "gearpatch verify: running ngspice on %s (%s level)...\n", scene.name.c_str(),
                std::string(level_name(o.level)).c_str());
   const tolerance::VerdictReport report = tolerance::verify_and_predict(scene, o, request);

@@ -39,6 +39,7 @@ PoolReport run_pool(std::size_t count, unsigned workers, const std::function<std
   Clock::time_point last_print = start;
   const auto progress = [&](bool final) {
     const double elapsed = seconds_since(start);
+    if (name.empty()) return;  // a quiet pool: the caller reports
     if (!final && elapsed - std::chrono::duration<double>(last_print - start).count() < 1) return;
     last_print = Clock::now();
     const std::size_t finished = report.done + report.failures.size();

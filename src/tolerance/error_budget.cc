@@ -76,26 +76,6 @@ Plan plan(const circuit::Circuit& c) {
   return p;
 }
 
-/// How far one component moves each signal of the circuit: the variant's
-/// trace against the perfect deck's, in verify's tube (the best shift within
-/// its time tolerance), as a fraction of full scale. Not the change of the
-/// error's maximum: a component that moves the signal where the nominal error
-/// is not largest changed that maximum little one at a time, yet adds up
-/// with the others (measured on bild5b, the-analog-thing: shares so taken
-/// predicted omega_p 1.01 % and the profile's deck erred 1.22 %, the Monte
-/// Carlo's p90 1.68 %).
-std::map<Signal, double> displacement(const verify::VerifyResult& perfect, const verify::VerifyResult& variant) {
-  std::map<Signal, double> out;
-  const double shift = perfect.comparison.time_tolerance;
-  for (const verify::SignalError& e : perfect.comparison.signals) {
-    const auto from = perfect.circuit.signals.find(e.signal), to = variant.circuit.signals.find(e.signal);
-    if (from == perfect.circuit.signals.end() || to == variant.circuit.signals.end()) continue;
-    const verify::Tube tube(perfect.circuit.t, from->second, {shift, 0});
-    out[e.signal] = tube.fit(variant.circuit.t, to->second).worst_distance / e.full_scale;
-  }
-  return out;
-}
-
 /// The worst signal's prediction with the dominant component removed from the RSS.
 double without_dominant(const ErrorBudget& b) {
   double others = 0;
@@ -144,6 +124,26 @@ void advise(ErrorBudget& b, double tolerance) {
 }
 
 }  // namespace
+
+/// How far one component moves each signal of the circuit: the variant's
+/// trace against the perfect deck's, in verify's tube (the best shift within
+/// its time tolerance), as a fraction of full scale. Not the change of the
+/// error's maximum: a component that moves the signal where the nominal error
+/// is not largest changed that maximum little one at a time, yet adds up
+/// with the others (measured on bild5b, the-analog-thing: shares so taken
+/// predicted omega_p 1.01 % and the profile's deck erred 1.22 %, the Monte
+/// Carlo's p90 1.68 %).
+std::map<Signal, double> displacement(const verify::VerifyResult& perfect, const verify::VerifyResult& variant) {
+  std::map<Signal, double> out;
+  const double shift = perfect.comparison.time_tolerance;
+  for (const verify::SignalError& e : perfect.comparison.signals) {
+    const auto from = perfect.circuit.signals.find(e.signal), to = variant.circuit.signals.find(e.signal);
+    if (from == perfect.circuit.signals.end() || to == variant.circuit.signals.end()) continue;
+    const verify::Tube tube(perfect.circuit.t, from->second, {shift, 0});
+    out[e.signal] = tube.fit(variant.circuit.t, to->second).worst_distance / e.full_scale;
+  }
+  return out;
+}
 
 ErrorBudget error_budget(const Scene& scene, verify::VerifyOptions base, unsigned workers) {
   base.level = circuit::Level::hardware;

@@ -43,6 +43,11 @@ struct ErrorBudget {
   double worst() const { return predicted.at(worst_signal); }
 };
 
+/// How far a changed deck moves each signal against the perfect deck's
+/// trace, in verify's tube (the best shift within its time tolerance), as a
+/// fraction of full scale: a component's share of the budget.
+std::map<Signal, double> displacement(const verify::VerifyResult& perfect, const verify::VerifyResult& variant);
+
 /// Runs the perfect deck and one variant per tolerance (verify at the
 /// hardware level on `base`'s scaling), `workers` at a time.
 ErrorBudget error_budget(const Scene& scene, verify::VerifyOptions base, unsigned workers);

@@ -57,6 +57,7 @@ VerdictReport verify_and_predict(const Scene& scene, const verify::VerifyOptions
     throw Error("--budget: the error budget is the hardware level's (its component tolerances); add --level "
                 "hardware");
   VerdictReport v;
+  v.offsets = request.offsets;
   circuit::Circuit built;  // the circuit the deck is rendered from, for the changed copies
   verify::VerifyOptions judged = options;
   also_alter(judged, [&](circuit::Circuit& c) { built = c; });
@@ -93,6 +94,8 @@ std::string prediction_table(const VerdictReport& v) {
 
 std::string to_table(const VerdictReport& v) {
   std::string t = verify::measurement_table(v.result);
+  // a check the estimate skipped is in the JSON only
+  if (v.offsets && v.offsets->skipped.empty()) t += to_text(*v.offsets) + "\n";
   if (v.budget) t += prediction_table(v);
   return t + verify::verdict_lines(v.result);
 }
@@ -104,6 +107,7 @@ nlohmann::json to_json(const VerdictReport& v) {
   j["measurement"] = {{"signals", measured},
                       {"worst_impact_shift", v.result.comparison.worst_impact_shift},
                       {"checks", j["checks"]}};
+  j["offset_check"] = v.offsets ? to_json(*v.offsets) : nlohmann::json(nullptr);
   if (!v.budget) {
     j["prediction"] = nullptr;
     return j;

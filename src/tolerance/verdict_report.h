@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tolerance/error_budget.h"
+#include "tolerance/offset_check.h"
 
 namespace gearpatch::tolerance {
 
@@ -14,6 +15,7 @@ struct VerdictRequest {
   bool budget = false;         ///< predict the error too (the hardware level's budget: its own ngspice runs)
   bool measure_causes = true;  ///< for a failure of a generated deck, run changed copies to find its causes
   unsigned workers = 1;        ///< ngspice runs at once for the budget and the causes
+  std::optional<OffsetCheck> offsets;  ///< the pre-run offset check, when the caller ran it
 };
 
 /// One signal's prediction beside its measurement: the budget's predicted
@@ -33,6 +35,7 @@ struct VerdictReport {
   verify::VerifyResult result;
   std::optional<ErrorBudget> budget;
   std::vector<PredictionCheck> prediction;  ///< per signal, when there is a budget
+  std::optional<OffsetCheck> offsets;       ///< the pre-run offset check, reported before the measurement
 
   int exit_status() const { return result.passed ? 0 : 1; }
 };
@@ -43,7 +46,7 @@ struct VerdictReport {
 VerdictReport verify_and_predict(const Scene& scene, const verify::VerifyOptions& options,
                                  const VerdictRequest& request);
 
-/// The measurement, the prediction beside it, then the verdict.
+/// The measurement, the offset check (when it measured), the prediction beside it, then the verdict.
 std::string to_table(const VerdictReport& report);
 /// verify's JSON with `measurement` (each signal's error) and `prediction`
 /// (the budget and each signal's predicted error beside it, or null) as
