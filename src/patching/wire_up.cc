@@ -604,6 +604,39 @@ class Wirer {
                                    ready ? "" : ": this sheet does not draw its elements inside"));
   }
 
+  /// The lock's switch with a latch in parallel, element by element: a
+  /// summer forms −(set − reset) from the two decisions (±1 MU each); a
+  /// holding comparator adds its own output to that, so it turns to −1 MU
+  /// once set (engaged, not stopped), to +1 MU once reset (stopped, not
+  /// engaged) and keeps its state in between; a second comparator on the same
+  /// inputs passes the signal while latched, else the lock's own switch.
+  Jack latched(const std::string& set, const std::string& reset, const Jack& signal) {
+    const Jack lock = switched(set, signal);
+    const std::string sum = take(ElementKind::summer, "lock latch: −(set − reset), each a decision of ±1 MU").label;
+    part(sum).signal = "−(set − reset)";
+    const Jack engaged = decision(set), not_stopped = switched(reset, reference(-1), reference(1));
+    const std::string hold =
+        take(ElementKind::comparator, "lock latch: holds its state (OUT on B): −1 MU once set, +1 MU once reset; "
+                                      "+1 MU in IC mode")
+            .label;
+    const std::string pass = take(ElementKind::comparator, "lock latch: the signal while latched, else the lock's "
+                                                           "switch; the same inputs as " + hold)
+                                 .label;
+    part(hold).signal = "−1 MU while latched, else +1 MU";
+    wire(engaged, input_jack(sum, 1));
+    wire(not_stopped, input_jack(sum, 1));
+    wire({sum, "out"}, {hold, "A"});
+    wire({hold, "OUT"}, {hold, "B"});
+    wire(reference(1), {hold, ">0"});
+    wire(reference(-1), {hold, "<0"});
+    wire({sum, "out"}, {pass, "A"});
+    wire({hold, "OUT"}, {pass, "B"});
+    wire(lock, {pass, ">0"});
+    wire(signal, {pass, "<0"});
+    part(pass).signal = carried(signal) + " while latched, else the lock's switch";
+    return {pass, "OUT"};
+  }
+
   /// A comparator's decision as ±1 MU: a copy of it whose switch picks the references.
   Jack decision(const std::string& ctrl) { return switched(ctrl, reference(1), reference(-1)); }
 
@@ -622,16 +655,7 @@ class Wirer {
                                fmt::format("{} = {:.5g}", to_string(*in.potentiometer), value));
       }
       if (!in.released_by.empty()) {
-        Part& p = take(ElementKind::function_generator,
-                       "lock latch: closed once set, opened once reset, in parallel with the lock's switch");
-        p.function = "latched_switch";
-        const std::string label = p.label;
-        wire(from, {label, "in"});
-        wire(decision(in.switched_by), {label, "set"});
-        wire(decision(in.released_by), {label, "reset"});
-        w_.notes.push_back(fmt::format("{} is drawn as one lock latch unit (in, set, reset, out): this sheet does not "
-                                       "draw its elements inside", label));
-        from = {label, "out"};
+        from = latched(in.switched_by, in.released_by, from);
       } else if (!in.switched_by.empty()) {
         from = switched(in.switched_by, from);
       }
