@@ -50,8 +50,10 @@ bool is_amplifier(const Part& p) { return p.kind == "integrator" || p.kind == "s
 /// comparator's switching time): without one the loop is algebraic and
 /// ngspice's Newton steps can land in the other stable state (measured on
 /// extremes/lock-zero-backlash on model-1: the latch closed at t = 0.91 s
-/// while set and reset both held, 1.35 % of full scale; with a lag of 1e-7,
-/// 1e-6 or 1e-4 of the run 0.046 %, 0.046 % and 0.051 %; 1e-6 is used).
+/// while set and reset both held, 1.35 % of full scale; with a lag of 1e-4
+/// of the run 0.051 %). A lag far below ngspice's largest step lets the
+/// trapezoidal rule ring it over (bild6c on classic, latched with backlash:
+/// 55 % at 1e-6 of the run, 0.018 % at 1e-4).
 std::string comparator_model(Level level, double unit, bool held, double lag) {
   const std::string name = held ? "gp_machine_comparator_held" : "gp_machine_comparator";
   const std::string sum = held ? "(time > 0 ? v(a) + v(b) : 1)" : "(v(a) + v(b))";
@@ -255,7 +257,7 @@ std::string library(const Wiring& w, const Nets& nets, Level level, const Machin
   for (const std::string& b : blocks) text += "\n" + circuit::render_block(level, b, m);
   if (w.count("comparator")) text += "\n" + comparator_model(level, m.unit_volts, false, 0);
   if (std::any_of(w.parts.begin(), w.parts.end(), [&](const Part& p) { return holds(p, nets); }))
-    text += "\n" + comparator_model(level, m.unit_volts, true, 1e-6 * w.beta * w.duration);
+    text += "\n" + comparator_model(level, m.unit_volts, true, 1e-4 * w.beta * w.duration);
   if (w.count("diode")) text += "\n" + diode_model(level);
   return text;
 }
