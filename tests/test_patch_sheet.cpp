@@ -4,6 +4,7 @@
 // is refused naming the open jack; a reversed diode fails; the golden sheets
 // hold no placeholder.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
@@ -12,6 +13,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "machine/machine_file.h"
 #include "patching/machine_patch.h"
 #include "patching/patch_sheet.h"
 #include "patching/sheet_deck.h"
@@ -62,10 +64,52 @@ std::string run_sheet(const Scene& scene, const std::optional<Wiring>& w) {
 std::vector<std::pair<std::string, std::string>> scene_files() {
   std::vector<std::pair<std::string, std::string>> files;
   for (const auto& s : testing::example_scenes()) files.emplace_back(s, testing::scene_path(s));
-  for (const char* d : {"conveyor", "startup", "reversal", "capped", "stribeck"})
-    files.emplace_back(std::string("drive/") + d, testing::scene_path(std::string("drive/") + d));
+  std::vector<std::string> drive;  // every scene in scenes/drive/
+  for (const auto& e : std::filesystem::directory_iterator(testing::source_path("scenes/drive")))
+    if (e.path().extension() == ".ini") drive.push_back(e.path().stem().string());
+  std::sort(drive.begin(), drive.end());
+  for (const std::string& d : drive) files.emplace_back("drive/" + d, testing::scene_path("drive/" + d));
   files.emplace_back("extremes/lock-zero-backlash", testing::scene_path("extremes/lock-zero-backlash"));  // the lock latch
   return files;
+}
+
+/// The sheet of a scene at a level, as gearpatch patch makes it (without the peak run).
+Wiring sheet_at(const Scene& scene, circuit::Level level) {
+  PatchOptions o;
+  o.check_peaks = false;
+  o.comparator_offset = circuit::comparator_offset(level);
+  o.lock_catch = level == circuit::Level::ideal;
+  return patch_on_machine(make_patch(scene, o), level).wiring;
+}
+
+/// The jacks of a sheet that its machine's panel does not have: an amplifier
+/// input beyond the profile's inputs of its weight ("SUM2 10d" where a summer
+/// has three weight-10 inputs), or a jack its kind has not. Elements of a kind
+/// the machine lacks are the allocation's shortfall, not a jack's.
+std::vector<std::string> jacks_not_on_panel(const Wiring& w, const MachineProfile& m) {
+  std::vector<std::string> wrong;
+  std::map<std::string, ElementKind> kinds;
+  for (ElementKind k : element_kinds()) kinds[element_name(k)] = k;
+  for (const Part& p : w.parts) {
+    const auto type = m.elements.find(kinds.at(p.kind));
+    if (type == m.elements.end() || type->second.count == 0) continue;
+    for (const auto& [jack, weight] : p.inputs) {
+      const int offered = static_cast<int>(std::count(type->second.inputs.begin(), type->second.inputs.end(), weight));
+      const std::string expect = fmt::format("{}{}", weight, static_cast<char>('a' + std::min(offered, 25)));
+      if (jack.size() != expect.size() || jack.substr(0, jack.size() - 1) != std::to_string(weight) ||
+          jack.back() < 'a' || jack.back() >= expect.back())
+        wrong.push_back(p.label + " " + jack);
+    }
+  }
+  for (const Wire& x : w.wires)
+    for (const Jack& j : {x.from, x.to}) {
+      const Part* p = w.find(j.part);
+      if (!p) continue;
+      std::vector<std::string> jacks = required_jacks(*p), outs = output_jacks(*p);
+      jacks.insert(jacks.end(), outs.begin(), outs.end());
+      if (std::find(jacks.begin(), jacks.end(), j.jack) == jacks.end()) wrong.push_back(j.name());
+    }
+  return wrong;
 }
 
 constexpr std::uint64_t sheet_seed = 25;
@@ -116,6 +160,30 @@ TEST_CASE("seeded random scenes run from their ideal sheets on each machine and 
   CHECK(passed >= runs * 9 / 10);
   WARN(fmt::format("{} of {} random sheet runs pass ({} refused by the scaling) in {:.1f} s", passed, runs, refused,
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()));
+}
+
+TEST_CASE("every jack every sheet names exists on its machine's panel, at both levels", "[patching][sheet]") {
+  std::vector<std::pair<std::string, std::function<Scene(const std::string&)>>> scenes;  // name, scene on a machine
+  for (const auto& [name, path] : scene_files())
+    scenes.emplace_back(name, [path = path](const std::string& m) { return load_scene(path, m); });
+  for (const RandomScene& r : random_scenes(sheet_seed, sheet_random_count))
+    scenes.emplace_back(r.name, [r](const std::string& m) { return parse_scene(r.text, r.name + ".ini", m); });
+  int sheets = 0;
+  for (const auto& [name, scene_on] : scenes)
+    for (const auto& machine : sheet_machines)
+      for (const auto level : {circuit::Level::ideal, circuit::Level::hardware}) {
+        INFO(name << " on " << machine << " at the " << circuit::level_name(level) << " level");
+        Wiring w;
+        try {
+          w = sheet_at(scene_on(machine), level);
+        } catch (const Error& e) {
+          REQUIRE(e.kind() == Error::Kind::input);  // the scaling refuses the scene: no sheet
+          continue;
+        }
+        ++sheets;
+        CHECK(jacks_not_on_panel(w, load_machine_profile(machine)) == std::vector<std::string>{});
+      }
+  CHECK(sheets >= 2 * 3 * 30);
 }
 
 TEST_CASE("a sheet missing any one numbered wire is refused, naming the open jack", "[patching][sheet]") {

@@ -44,24 +44,39 @@ bool is_amplifier(const Part& p) { return p.kind == "integrator" || p.kind == "s
 /// The machine's comparator with its own switch: A + B > 0 routes >0 to OUT,
 /// else <0. Ideal: a smooth choice over 1e-6 MU; hardware: the library's
 /// Schmitt trigger and two analog switches behind a follower.
-std::string comparator_model(Level level, double unit) {
+/// `held`: a comparator whose OUT feeds its own input holds its state (a
+/// flip-flop); IC mode resets it, so until the run starts it reads A + B > 0.
+/// At the ideal level its output follows with a lag of `lag` seconds (a
+/// comparator's switching time): without one the loop is algebraic and
+/// ngspice's Newton steps can land in the other stable state (measured on
+/// extremes/lock-zero-backlash on model-1: the latch closed at t = 0.91 s
+/// while set and reset both held, 1.35 % of full scale; with a lag of 1e-4
+/// of the run 0.051 %). A lag far below ngspice's largest step lets the
+/// trapezoidal rule ring it over (bild6c on classic, latched with backlash:
+/// 55 % at 1e-6 of the run, 0.018 % at 1e-4).
+std::string comparator_model(Level level, double unit, bool held, double lag) {
+  const std::string name = held ? "gp_machine_comparator_held" : "gp_machine_comparator";
+  const std::string sum = held ? "(time > 0 ? v(a) + v(b) : 1)" : "(v(a) + v(b))";
   if (level == Level::ideal)
     return fmt::format(
-        "* the machine's comparator, ideal: OUT = >0 while A + B > 0, else <0 (smooth over {} V)\n"
-        ".subckt gp_machine_comparator a b gt lt out\n"
-        "Bsel out 0 V = v(lt) + (v(gt) - v(lt)) * (1 + tanh((v(a) + v(b))/{}))/2\n"
-        ".ends gp_machine_comparator\n",
-        format_number(1e-6 * unit), format_number(1e-6 * unit));
-  return "* the machine's comparator, hardware: Schmitt trigger on A + B, two switches, output follower\n"
-         ".subckt gp_machine_comparator a b gt lt out\n"
-         "Bsum s 0 V = v(a) + v(b)\n"
-         "Xc s ctrl gp_comparator params: offset=0\n"
-         "Einv nctrl 0 ctrl 0 -1\n"
-         "Xs1 gt o ctrl gp_switch\n"
-         "Xs2 lt o nctrl gp_switch\n"
-         "Ro o 0 1e9\n"
-         "Ebuf out 0 o 0 1\n"
-         ".ends gp_machine_comparator\n";
+        "* the machine's comparator{3}, ideal: OUT = >0 while A + B > 0, else <0 (smooth over {1} V)\n"
+        ".subckt {0} a b gt lt out\n"
+        "Bsel {4} 0 V = v(lt) + (v(gt) - v(lt)) * (1 + tanh({2}/{1}))/2\n{5}"
+        ".ends {0}\n",
+        name, format_number(1e-6 * unit), sum, held ? " holding its state, reset to >0 in IC mode" : "",
+        held ? "o" : "out",
+        held ? fmt::format("Rlag o l 1\nClag l 0 {}\nEbuf out 0 l 0 1\n", format_number(lag)) : "");
+  return fmt::format("* the machine's comparator{2}, hardware: Schmitt trigger on A + B, two switches, output follower\n"
+                     ".subckt {0} a b gt lt out\n"
+                     "Bsum s 0 V = {1}\n"
+                     "Xc s ctrl gp_comparator params: offset=0\n"
+                     "Einv nctrl 0 ctrl 0 -1\n"
+                     "Xs1 gt o ctrl gp_switch\n"
+                     "Xs2 lt o nctrl gp_switch\n"
+                     "Ro o 0 1e9\n"
+                     "Ebuf out 0 o 0 1\n"
+                     ".ends {0}\n",
+                     name, sum, held ? " holding its state, reset to >0 in IC mode" : "");
 }
 
 std::string diode_model(Level level) {
@@ -189,6 +204,13 @@ class Nets {
   std::map<Jack, std::string> names_;
 };
 
+/// A comparator whose output is wired back to its input A or B: a flip-flop.
+bool holds(const Part& p, const Nets& nets) {
+  if (p.kind != "comparator") return false;
+  const std::string out = nets.node({p.label, "OUT"});
+  return out == nets.node({p.label, "A"}) || out == nets.node({p.label, "B"});
+}
+
 std::string amplifier_lines(const Part& p, const Nets& nets, Level level, const MachineProfile& m) {
   std::vector<circuit::Input> pins;
   std::string nodes;
@@ -223,7 +245,7 @@ std::string unit_lines(const Part& p, const Nets& nets, double unit) {
   return text + "\n";
 }
 
-std::string library(const Wiring& w, Level level, const MachineProfile& m) {
+std::string library(const Wiring& w, const Nets& nets, Level level, const MachineProfile& m) {
   std::set<std::string> blocks;
   for (const Part& p : w.parts) {
     if (p.kind == "potentiometer") blocks.insert("potentiometer");
@@ -233,7 +255,9 @@ std::string library(const Wiring& w, Level level, const MachineProfile& m) {
   }
   std::string text = "\n" + circuit::render_models(level, m);
   for (const std::string& b : blocks) text += "\n" + circuit::render_block(level, b, m);
-  if (w.count("comparator")) text += "\n" + comparator_model(level, m.unit_volts);
+  if (w.count("comparator")) text += "\n" + comparator_model(level, m.unit_volts, false, 0);
+  if (std::any_of(w.parts.begin(), w.parts.end(), [&](const Part& p) { return holds(p, nets); }))
+    text += "\n" + comparator_model(level, m.unit_volts, true, 1e-4 * w.beta * w.duration);
   if (w.count("diode")) text += "\n" + diode_model(level);
   return text;
 }
@@ -248,8 +272,8 @@ std::string instances(const Wiring& w, const Nets& nets, Level level, const Mach
       text += fmt::format("X{} {} {} gp_potentiometer params: setting={}\n", n, at("in"), at("out"),
                           format_number(level == Level::hardware ? p.dial : p.setting));
     else if (p.kind == "comparator")
-      text += fmt::format("X{} {} {} {} {} {} gp_machine_comparator\n", n, at("A"), at("B"), at(">0"), at("<0"),
-                          at("OUT"));
+      text += fmt::format("X{} {} {} {} {} {} {}\n", n, at("A"), at("B"), at(">0"), at("<0"), at("OUT"),
+                          holds(p, nets) ? "gp_machine_comparator_held" : "gp_machine_comparator");
     else if (p.kind == "diode")
       text += level == Level::hardware ? fmt::format("D{} {} {} gp_d1n4148\n", n, at("anode"), at("cathode"))
                                        : fmt::format("X{} {} {} gp_ideal_diode\n", n, at("anode"), at("cathode"));
@@ -297,7 +321,7 @@ std::string sheet_deck(const Wiring& w, Level level, const circuit::TransientCon
       "* gearpatch: the patch sheet of scene '{}' on {}, run as wired, level {}\n{}"
       "* every element is its kind's model from the machine profile; nodes are the sheet's numbered wires\n",
       w.scene, w.machine, circuit::level_name(level), spice::format_deck_header(h));
-  return head + library(w, level, m) + instances(w, nets, level, m) + analysis(w, nets, control);
+  return head + library(w, nets, level, m) + instances(w, nets, level, m) + analysis(w, nets, control);
 }
 
 }  // namespace gearpatch::patching

@@ -479,17 +479,79 @@ class Wirer {
                                                           fmt::format("limiter gain 1/band = {:.5g}: {:.5g} into {} "
                                                                       "weight-10 input{}", g, setting, inputs,
                                                                       inputs > 1 ? "s" : ""));
-      for (int k = 0; k < inputs; ++k) wire(scaled, input_jack(gain, 10));
-      if (const int offered = weight_ten_inputs(); inputs > offered)
-        w_.notes.push_back(fmt::format("{} takes {} weight-10 inputs for the gain 1/band = {:.5g}; the machine's "
-                                       "summer has {}: the gain needs a second stage", gain, inputs, g, offered));
+      feed(gain, std::vector<std::pair<Jack, int>>(static_cast<std::size_t>(inputs), {scaled, 10}));
     });
   }
 
-  int weight_ten_inputs() const {
-    const auto type = c_.machine.elements.find(ElementKind::summer);
-    if (type == c_.machine.elements.end()) return 0;
-    return static_cast<int>(std::count(type->second.inputs.begin(), type->second.inputs.end(), 10));
+  /// How many inputs of `weight` one element of the part's kind has on the panel.
+  int jacks_of(const Part& p, int weight) const {
+    for (const auto& [kind, type] : c_.machine.elements)
+      if (element_name(kind) == p.kind)
+        return static_cast<int>(std::count(type.inputs.begin(), type.inputs.end(), weight));
+    return 0;
+  }
+
+  /// How many inputs of each weight take their source directly: all where
+  /// the panel has enough jacks of that weight, else one fewer than it has,
+  /// the last jack taking the sum of the rest (see feed).
+  std::map<int, int> direct_jacks(const std::string& target, const std::vector<int>& weights) {
+    std::map<int, int> needed;
+    for (int weight : weights) ++needed[weight];
+    for (auto& [weight, n] : needed)
+      if (const int offered = jacks_of(part(target), weight); offered > 0 && n > offered) n = offered - 1;
+    return needed;
+  }
+
+  /// Wires a source into the next free input of its weight on `target`, or,
+  /// once the direct jacks are spent, keeps it in `rest`: the sources the
+  /// panel has no jack for, which feed() wires as one sum.
+  void to_input(const std::string& target, const Jack& from, int weight, std::map<int, int>& direct,
+                std::map<int, std::vector<Jack>>& rest) {
+    if (direct[weight]-- > 0) wire(from, input_jack(target, weight));
+    else rest[weight].push_back(from);
+  }
+
+  /// Wires each (source, weight) into the next free input of that weight on
+  /// `target`. Where the panel has fewer inputs of a weight than the program
+  /// needs, the last jack takes the sum of the rest, made by summers on
+  /// weight-1 inputs (and the sign restored), so that every jack named exists.
+  void feed(const std::string& target, const std::vector<std::pair<Jack, int>>& sources) {
+    std::vector<int> weights;
+    for (const auto& source : sources) weights.push_back(source.second);
+    std::map<int, int> direct = direct_jacks(target, weights);
+    std::map<int, std::vector<Jack>> rest;
+    for (const auto& [from, weight] : sources) to_input(target, from, weight, direct, rest);
+    sum_rest(target, rest);
+  }
+
+  void sum_rest(const std::string& target, const std::map<int, std::vector<Jack>>& rest) {
+    for (const auto& [weight, from] : rest) wire(positive_sum(from, target), input_jack(target, weight));
+  }
+
+  /// A jack carrying +Σ of the sources: a summer's −Σ turned round by an inverter.
+  Jack positive_sum(const std::vector<Jack>& from, const std::string& target) {
+    if (from.size() == 1) return from.front();
+    const Jack minus = negative_sum(from, target);
+    const bool inverter = used_[ElementKind::inverter] < available(ElementKind::inverter);
+    const std::string label =
+        take(inverter ? ElementKind::inverter : ElementKind::summer, "turns the sum for " + target + " round").label;
+    part(label).signal = "+Σ into " + target;
+    wire(minus, input_jack(label, 1));
+    return {label, "out"};
+  }
+
+  /// A summer's output −Σ of the sources on its weight-1 inputs; more sources
+  /// than it has take a further +Σ on its last input.
+  Jack negative_sum(const std::vector<Jack>& from, const std::string& target) {
+    const std::string label = take(ElementKind::summer, "sums inputs " + target + " has no jack for").label;
+    part(label).signal = "−Σ into " + target;
+    const std::size_t room = static_cast<std::size_t>(std::max(2, jacks_of(part(label), 1)));
+    const std::size_t direct = from.size() <= room ? from.size() : room - 1;
+    for (std::size_t k = 0; k < direct; ++k) wire(from[k], input_jack(label, 1));
+    if (direct < from.size())
+      wire(positive_sum({from.begin() + static_cast<std::ptrdiff_t>(direct), from.end()}, target),
+           input_jack(label, 1));
+    return {label, "out"};
   }
 
   /// −|in| = −(relu(in) + relu(−in)): each diode passes its side's current into the summer.
@@ -542,11 +604,48 @@ class Wirer {
                                    ready ? "" : ": this sheet does not draw its elements inside"));
   }
 
+  /// The lock's switch with a latch in parallel, element by element: a
+  /// summer forms −(set − reset) from the two decisions (±1 MU each); a
+  /// holding comparator adds its own output to that, so it turns to −1 MU
+  /// once set (engaged, not stopped), to +1 MU once reset (stopped, not
+  /// engaged) and keeps its state in between; a second comparator on the same
+  /// inputs passes the signal while latched, else the lock's own switch.
+  Jack latched(const std::string& set, const std::string& reset, const Jack& signal) {
+    const Jack lock = switched(set, signal);
+    const std::string sum = take(ElementKind::summer, "lock latch: −(set − reset), each a decision of ±1 MU").label;
+    part(sum).signal = "−(set − reset)";
+    const Jack engaged = decision(set), not_stopped = switched(reset, reference(-1), reference(1));
+    const std::string hold =
+        take(ElementKind::comparator, "lock latch: holds its state (OUT on B): −1 MU once set, +1 MU once reset; "
+                                      "+1 MU in IC mode")
+            .label;
+    const std::string pass = take(ElementKind::comparator, "lock latch: the signal while latched, else the lock's "
+                                                           "switch; the same inputs as " + hold)
+                                 .label;
+    part(hold).signal = "−1 MU while latched, else +1 MU";
+    wire(engaged, input_jack(sum, 1));
+    wire(not_stopped, input_jack(sum, 1));
+    wire({sum, "out"}, {hold, "A"});
+    wire({hold, "OUT"}, {hold, "B"});
+    wire(reference(1), {hold, ">0"});
+    wire(reference(-1), {hold, "<0"});
+    wire({sum, "out"}, {pass, "A"});
+    wire({hold, "OUT"}, {pass, "B"});
+    wire(lock, {pass, ">0"});
+    wire(signal, {pass, "<0"});
+    part(pass).signal = carried(signal) + " while latched, else the lock's switch";
+    return {pass, "OUT"};
+  }
+
   /// A comparator's decision as ±1 MU: a copy of it whose switch picks the references.
   Jack decision(const std::string& ctrl) { return switched(ctrl, reference(1), reference(-1)); }
 
   void inputs(const circuit::Amplifier& a) {
     const std::string target = out_of(a.out).part;
+    std::vector<int> weights;
+    for (const circuit::AmplifierInput& in : a.inputs) weights.push_back(in.weight);
+    std::map<int, int> direct = direct_jacks(target, weights);
+    std::map<int, std::vector<Jack>> rest;
     for (const circuit::AmplifierInput& in : a.inputs) {
       Jack from = out_of(in.from);
       if (in.potentiometer) {
@@ -556,21 +655,13 @@ class Wirer {
                                fmt::format("{} = {:.5g}", to_string(*in.potentiometer), value));
       }
       if (!in.released_by.empty()) {
-        Part& p = take(ElementKind::function_generator,
-                       "lock latch: closed once set, opened once reset, in parallel with the lock's switch");
-        p.function = "latched_switch";
-        const std::string label = p.label;
-        wire(from, {label, "in"});
-        wire(decision(in.switched_by), {label, "set"});
-        wire(decision(in.released_by), {label, "reset"});
-        w_.notes.push_back(fmt::format("{} is drawn as one lock latch unit (in, set, reset, out): this sheet does not "
-                                       "draw its elements inside", label));
-        from = {label, "out"};
+        from = latched(in.switched_by, in.released_by, from);
       } else if (!in.switched_by.empty()) {
         from = switched(in.switched_by, from);
       }
-      wire(from, input_jack(target, in.weight));
+      to_input(target, from, in.weight, direct, rest);
     }
+    sum_rest(target, rest);
   }
 
   void initial_conditions() {
