@@ -122,9 +122,26 @@ std::vector<ChannelReading> readings_of(const MeasuredOptions& o, const std::vec
   return out;
 }
 
-double option_value(const std::map<std::string, double>& m, const std::string& channel, double otherwise) {
-  const auto it = m.find(channel);
-  return it == m.end() ? otherwise : it->second;
+/// A channel's probe ratio or offset: the option's, else the file's, else
+/// `otherwise`; `said` gets where it came from ("" for neither).
+double channel_setting(const std::map<std::string, double>& option, const std::map<std::string, double>& file,
+                       const std::string& channel, double otherwise, const std::string& option_name,
+                       std::string& said) {
+  said = "";
+  for (const auto& [map, name] : {std::pair{&option, option_name}, std::pair{&file, std::string("the file")}})
+    if (const auto it = map->find(channel); it != map->end()) {
+      said = name;
+      return it->second;
+    }
+  return otherwise;
+}
+
+/// "probe x10 (the file), offset 0.05 V (--offset)" for what was applied to a column, or "".
+std::string settings_note(double probe, const std::string& probe_from, double offset, const std::string& offset_from) {
+  std::string note;
+  if (!probe_from.empty()) note = fmt::format("probe x{:g} ({})", probe, probe_from);
+  if (!offset_from.empty()) note += fmt::format("{}offset {:g} V ({})", note.empty() ? "" : ", ", offset, offset_from);
+  return note;
 }
 
 /// Each recorded column's worst excursion beyond ±1 machine unit, its steps and noise allowed.
@@ -156,9 +173,13 @@ MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o,
       m.missing.push_back(r.signal);
       continue;
     }
-    const double probe = option_value(o.probe, column->channel, 1), offset = option_value(o.offset, column->channel, 0);
+    std::string probe_from, offset_from;
+    const double probe = channel_setting(o.probe, rec.probe, column->channel, 1, "--probe", probe_from);
+    const double offset = channel_setting(o.offset, rec.offset, column->channel, 0, "--offset", offset_from);
     std::vector<double> v = column->volts;
     for (double& x : v) x = probe * x - offset;
+    if (const std::string note = settings_note(probe, probe_from, offset, offset_from); !note.empty())
+      m.applied[r.signal] = note;
     m.readings.push_back({r.signal, column->channel, r.sign});
     machine_volts.push_back(std::move(v));
   }

@@ -26,7 +26,7 @@ ChannelReading parse_channel_reading(const std::string& text);
 std::pair<std::string, double> parse_channel_number(const std::string& option, const std::string& text);
 
 /// How to read a recording: which signal on which column, the probe ratio
-/// the scope was not told of, the offset, the run's start.
+/// the scope was not told of, the offset (each before the file's own), the run's start.
 struct MeasuredOptions {
   std::string path;                     ///< for messages
   std::string format = "auto";
@@ -58,6 +58,9 @@ struct MeasuredTrace {
   bool start_given = false;            ///< --start, not found from the trace
   double span = 0;                     ///< real s of the run the recording covers
   std::vector<ChannelResolution> resolution;
+  /// The probe ratio and offset applied to a signal's column and where each
+  /// came from ("probe x10 (the file)"); none for a column read as written.
+  std::map<Signal, std::string> applied;
   CircuitTrace trace;
   std::vector<Overload> overloads;     ///< a column beyond ±1 machine unit
   /// Every recorded column after the start, machine units (sign, probe and

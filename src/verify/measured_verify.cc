@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <optional>
 
 #include "circuit/circuit.h"
 #include "model/gear_model.h"
@@ -73,6 +74,29 @@ void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::C
   r.overloads = m.overloads;
 }
 
+/// When every signal that leaves the tube does so by less than its channel's
+/// own resolution (an 8-bit step at a coarse volts per division, or noise),
+/// the recording may not tell the machine from the reference at this
+/// tolerance: that sentence in place of "computes something else"; else none.
+std::optional<std::string> too_coarse(const VerifyResult& r, const MeasuredTrace& m) {
+  std::string outside;
+  for (const SignalError& e : r.comparison.signals) {
+    if (e.max_error <= r.tolerance) continue;
+    const auto res = std::find_if(m.resolution.begin(), m.resolution.end(),
+                                  [&](const ChannelResolution& c) { return c.signal == e.signal; });
+    if (res == m.resolution.end() || e.max_error > r.tolerance + res->fraction) return std::nullopt;
+    outside += fmt::format("{}{} by {:.3g} % with its {}'s resolution {:.3g} % of 1 MU", outside.empty() ? "" : ", ",
+                           to_string(e.signal), 100 * e.max_error, res->channel, 100 * res->fraction);
+  }
+  if (outside.empty()) return std::nullopt;
+  return fmt::format("no inverted channel, swap of two channels or other time scale explains the recording, and "
+                     "every signal that leaves the tube does so by less than its recording's resolution ({}): the "
+                     "recording may be too coarse to judge at {:g} %; record those channels at a finer volts per "
+                     "division (the scope's vertical offset) or in its high-resolution mode before looking for a "
+                     "wrong setting or wire",
+                     outside, 100 * r.tolerance);
+}
+
 }  // namespace
 
 MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options, const std::string& text,
@@ -114,6 +138,9 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     judge_comparison(r);
     if (!r.passed) {
       r.diagnosis = what_the_trace_looks_like(m, r.reference, model, circuit, scene.duration, r.tolerance);
+      if (const auto coarse = too_coarse(r, m); coarse && r.diagnosis.size() == 1 &&
+                                                r.diagnosis[0].rfind("no inverted channel", 0) == 0)
+        r.diagnosis[0] = *coarse;
       // The rules that read the run itself; the rest measure changed decks, which a recording has none of.
       for (const std::string& d : diagnose(r, patch))
         if (d.rfind("no rule applies", 0) != 0) r.diagnosis.push_back(d);
@@ -132,8 +159,11 @@ std::string measured_notes(const MeasuredVerify& v, const std::string& path) {
   for (const ChannelResolution& r : m.resolution) {
     const auto watched = std::find_if(v.watch.begin(), v.watch.end(), [&](const auto& w) { return w.signal == r.signal; });
     const auto reading = std::find_if(m.readings.begin(), m.readings.end(), [&](const auto& x) { return x.signal == r.signal; });
-    t += fmt::format("  {:<8} {:<4} sign {:+g}  resolution {:.3g} % of 1 MU (steps {:.4g} V, noise {:.3g} V rms){}\n",
-                     to_string(r.signal), r.channel, reading->sign, 100 * r.fraction, r.step_volts, r.noise_volts,
+    const auto applied = m.applied.find(r.signal);
+    t += fmt::format("  {:<8} {:<4} sign {:+g}  {}resolution {:.3g} % of 1 MU (steps {:.4g} V, noise {:.3g} V rms){}\n",
+                     to_string(r.signal), r.channel, reading->sign,
+                     applied == m.applied.end() ? "" : applied->second + ", ", 100 * r.fraction, r.step_volts,
+                     r.noise_volts,
                      watched == v.watch.end() ? ""
                                               : fmt::format("; sheet: {} at {:g} V/div", watched->channel,
                                                             watched->volts_per_div));
