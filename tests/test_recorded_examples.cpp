@@ -108,12 +108,15 @@ TEST_CASE("a recording of each example on each machine is judged as the example'
 
 // The table of docs/recorded-traces.md: each example's deck and recording at 2 %.
 TEST_CASE("print the examples' recordings", "[.recorded-examples-table]") {
-  std::cout << "| scene   | machine          | format        | deck: worst % (signal) | recording: worst % (signal) |\n"
-               "|---------|------------------|---------------|------------------------|-----------------------------|\n";
+  std::cout << "| scene   | machine          | format        | deck: worst % (signal) | resolution % | "
+               "recording: worst % (signal) |\n"
+               "|---------|------------------|---------------|------------------------|--------------|"
+               "-----------------------------|\n";
   for (const ExampleRecording& e : example_recordings())
-    std::cout << fmt::format("| {:<7} | {:<16} | {:<13} | {:<17} {} | {:<22} {} |\n", e.scene, e.machine, e.format,
-                             worst_signal(e.run->result), e.run->result.passed ? "PASS" : "FAIL",
-                             worst_signal(e.verdict.result), e.verdict.result.passed ? "PASS" : "FAIL");
+    std::cout << fmt::format("| {:<7} | {:<16} | {:<13} | {:<17} {} | {:>12.3g} | {:<22} {} |\n", e.scene, e.machine,
+                             e.format, worst_signal(e.run->result), e.run->result.passed ? "PASS" : "FAIL",
+                             100 * e.verdict.measured.worst_resolution(), worst_signal(e.verdict.result),
+                             e.verdict.result.passed ? "PASS" : "FAIL");
 }
 
 TEST_CASE("each example's recording names an inverted and a swapped channel and fails on a detuned machine",
