@@ -255,6 +255,12 @@ TEST_CASE("verify --measured runs the example recording in scenes/traces as the 
   CHECK_THAT(output, Catch::Contains("omega_p matches -1 × the reference"));
   CHECK(testing::run_command(command + " --deck x.cir", output) == 2);
   CHECK_THAT(output, Catch::Contains("--deck and --measured"));
+  // verify --help shows the workflow, ending in the command run above.
+  CHECK(testing::run_command(std::string(GEARPATCH_BINARY) + " verify --help", output) == 0);
+  CHECK_THAT(output, Catch::Contains("1. patch:  gearpatch patch scenes/driven.ini --machine model-1") &&
+                         Catch::Contains("2. wire:") && Catch::Contains("3. record:") &&
+                         Catch::Contains("4. verify: gearpatch verify scenes/driven.ini --machine model-1 \\\n"
+                                         "               --measured scenes/traces/driven.model-1.csv"));
 }
 
 // Writes scenes/traces/driven.model-1.csv, the docs' example: a Rigol

@@ -107,7 +107,7 @@ TEST_CASE("a recording of each example on each machine is judged as the example'
 }
 
 // The table of docs/recorded-traces.md: each example's deck and recording at 2 %.
-TEST_CASE("print the examples' recordings", "[.recorded-examples-table]") {
+TEST_CASE("print the examples' recordings", "[.recorded-examples-table][recorded_examples]") {
   std::cout << "| scene   | machine          | format        | deck: worst % (signal) | resolution % | "
                "recording: worst % (signal) |\n"
                "|---------|------------------|---------------|------------------------|--------------|"
