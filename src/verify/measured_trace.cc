@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "verify/trace_smoothing.h"
 
 namespace gearpatch::verify {
 namespace {
@@ -159,10 +160,29 @@ std::vector<Overload> recorded_overloads(const MeasuredTrace& m) {
   return out;
 }
 
+/// Smooths one column over `half` samples either side into `smoothed` and
+/// states its resolution as recorded and as judged.
+ChannelResolution smooth_channel(const ChannelReading& reading, const std::vector<double>& volts,
+                                 std::vector<double>& smoothed, std::size_t before, std::size_t half, double unit) {
+  ChannelResolution r{reading.signal, reading.channel, quantisation_step(volts), noise(volts, before)};
+  r.recorded = r.fraction = std::max(r.step_volts, 2 * r.noise_volts) / unit;
+  smoothed = volts;
+  if (half < 1 || 2 * half + 1 > volts.size()) return r;
+  smoothed = smooth_moving_average(volts, half);
+  r.noise_volts = residual_noise(volts, smoothed, half);
+  r.recorded = std::max(r.step_volts, 2 * r.noise_volts) / unit;
+  r.smoothed_over = 2 * half + 1;
+  // The noise before the steps (the residual holds the steps' own step²/12 too) dithers them.
+  const double analog = std::sqrt(std::max(0.0, r.noise_volts * r.noise_volts - r.step_volts * r.step_volts / 12));
+  r.fraction = std::max(2 * r.noise_volts * std::sqrt(smoothed_noise_gain(half)),
+                        dithered_quantisation_bias(r.step_volts, analog)) / unit;
+  return r;
+}
+
 }  // namespace
 
 MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o, const circuit::Circuit& circuit,
-                            const std::vector<WatchedSignal>& watch, double duration) {
+                            const std::vector<WatchedSignal>& watch, double duration, double smoothing) {
   MeasuredTrace m;
   m.format = rec.format, m.time_from = rec.time_from, m.samples = rec.t.size();
   const double unit = circuit.machine.unit_volts;
@@ -196,23 +216,26 @@ MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o,
   m.start_given = o.start.has_value();
   m.start = o.start ? *o.start : find_run_start(rec.t, machine_volts, unit, o.path);
   const std::size_t before = static_cast<std::size_t>(std::lower_bound(rec.t.begin(), rec.t.end(), m.start) - rec.t.begin());
+  const double interval = (rec.t.back() - rec.t.front()) / static_cast<double>(rec.t.size() - 1);
+  const auto half = static_cast<std::size_t>(std::max(0.0, std::floor(smoothing * circuit.beta / interval)));
+  std::vector<std::vector<double>> smoothed(m.readings.size()), impact_volts(m.readings.size());
   for (std::size_t k = 0; k < m.readings.size(); ++k) {
-    const auto& v = machine_volts[k];
-    const double step = quantisation_step(v), sigma = noise(v, before);
-    m.resolution.push_back({m.readings[k].signal, m.readings[k].channel, step, sigma,
-                            std::max(step, 2 * sigma) / unit});
+    m.resolution.push_back(smooth_channel(m.readings[k], machine_volts[k], smoothed[k], before, half, unit));
+    impact_volts[k] = smooth_moving_average(machine_volts[k], half / 2);
   }
   const double end = m.start + circuit.beta * duration * (1 + 1e-9);
   for (std::size_t i = before; i < rec.t.size(); ++i) {
     m.machine_t.push_back(rec.t[i] - m.start);
     for (std::size_t k = 0; k < m.readings.size(); ++k)
-      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * machine_volts[k][i] / unit);
+      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * smoothed[k][i] / unit);
     if (rec.t[i] > end) continue;
     m.trace.t.push_back((rec.t[i] - m.start) / circuit.beta);
+    m.recorded.t.push_back(m.trace.t.back());
     for (std::size_t k = 0; k < m.readings.size(); ++k) {
       const Signal s = m.readings[k].signal;
-      const double mu = m.readings[k].sign * machine_volts[k][i] / unit;
-      m.trace.signals[s].push_back(mu * circuit.probes.at(s).full_scale);
+      const double physical = m.readings[k].sign / unit * circuit.probes.at(s).full_scale;
+      m.trace.signals[s].push_back(physical * smoothed[k][i]);
+      m.recorded.signals[s].push_back(physical * impact_volts[k][i]);
     }
   }
   if (m.trace.t.size() < 2)

@@ -12,6 +12,7 @@
 #include "solver/integrate.h"
 #include "verify/diagnosis.h"
 #include "verify/trace_likeness.h"
+#include "verify/trace_smoothing.h"
 
 namespace gearpatch::verify {
 namespace {
@@ -38,14 +39,19 @@ std::vector<WatchedSignal> sheet_watch_list(const circuit::Circuit& circuit) {
   return list;
 }
 
+/// " smoothed over 21 samples", or "" for a channel judged as recorded.
+std::string smoothed_over(const ChannelResolution& r) {
+  return r.smoothed_over > 1 ? fmt::format(" smoothed over {} samples", r.smoothed_over) : "";
+}
+
 void refuse_finer_than_resolution(const MeasuredTrace& m, double tolerance, const std::string& path) {
   for (const ChannelResolution& r : m.resolution)
     if (r.fraction > tolerance)
       throw Error(fmt::format("tolerance {:.3g} %: finer than {}'s own resolution on {} ({:.3g} % of the machine "
-                              "unit: steps of {:.4g} V, noise {:.4g} V rms); give --tolerance {:.2g}% or more, or "
+                              "unit{}: steps of {:.4g} V, noise {:.4g} V rms); give --tolerance {:.2g}% or more, or "
                               "record at a finer volts per division",
-                              100 * tolerance, path, r.channel, 100 * r.fraction, r.step_volts, r.noise_volts,
-                              100 * r.fraction * 1.05));
+                              100 * tolerance, path, r.channel, 100 * r.fraction, smoothed_over(r), r.step_volts,
+                              r.noise_volts, 100 * r.fraction * 1.05));
 }
 
 /// The comparison of the recording with the reference, as verify compares a deck's run.
@@ -70,7 +76,10 @@ void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::C
   settings.grazing_depth =
       std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
   settings.contact_hysteresis = dphi_resolution;
-  r.comparison = compare(reference, r.circuit, model, settings);
+  // The tube judges the smoothed trace; the impacts' instants, speeds and
+  // peaks are read as recorded, where a window across a contact's kink would bend them.
+  r.comparison = compare(reference, m.recorded, model, settings);
+  r.comparison.signals = compare(reference, r.circuit, model, settings).signals;
   r.overloads = m.overloads;
 }
 
@@ -130,7 +139,8 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
 
     out.watch = sheet_watch_list(circuit);
     const ScopeRecording recording = read_scope_csv(text, mo.path, mo.format);
-    out.measured = measure_trace(recording, mo, circuit, out.watch, scene.duration);
+    out.measured = measure_trace(recording, mo, circuit, out.watch, scene.duration,
+                                 smoothing_half_width(r.reference, r.tolerance, scene.duration));
     const MeasuredTrace& m = out.measured;
     refuse_finer_than_resolution(m, r.tolerance, mo.path);
 
@@ -160,10 +170,12 @@ std::string measured_notes(const MeasuredVerify& v, const std::string& path) {
     const auto watched = std::find_if(v.watch.begin(), v.watch.end(), [&](const auto& w) { return w.signal == r.signal; });
     const auto reading = std::find_if(m.readings.begin(), m.readings.end(), [&](const auto& x) { return x.signal == r.signal; });
     const auto applied = m.applied.find(r.signal);
-    t += fmt::format("  {:<8} {:<4} sign {:+g}  {}resolution {:.3g} % of 1 MU (steps {:.4g} V, noise {:.3g} V rms){}\n",
+    t += fmt::format("  {:<8} {:<4} sign {:+g}  {}resolution {:.3g} % of 1 MU{} ({}steps {:.4g} V, noise {:.3g} V "
+                     "rms){}\n",
                      to_string(r.signal), r.channel, reading->sign,
-                     applied == m.applied.end() ? "" : applied->second + ", ", 100 * r.fraction, r.step_volts,
-                     r.noise_volts,
+                     applied == m.applied.end() ? "" : applied->second + ", ", 100 * r.fraction, smoothed_over(r),
+                     r.smoothed_over > 1 ? fmt::format("as recorded {:.3g} %: ", 100 * r.recorded) : "",
+                     r.step_volts, r.noise_volts,
                      watched == v.watch.end() ? ""
                                               : fmt::format("; sheet: {} at {:g} V/div", watched->channel,
                                                             watched->volts_per_div));
