@@ -25,7 +25,7 @@ double smoothing_half_width(const Trajectory& reference, double tolerance, doubl
   double shortest = tolerance * duration;
   for (const ContactRecord& c : reference.contacts)
     if (c.impact && c.released) shortest = std::min(shortest, c.end - c.start);
-  return shortest / 4;
+  return shortest / 8;
 }
 
 double residual_noise(const std::vector<double>& raw, const std::vector<double>& smoothed, std::size_t half) {
