@@ -179,6 +179,30 @@ ChannelResolution smooth_channel(const ChannelReading& reading, const std::vecto
   return r;
 }
 
+/// The samples from the start on into machine units (all of them) and into
+/// physical units and real time (up to the run's end): the smoothed columns
+/// for the tube, the ones smoothed over half the window for the impacts.
+void convert_samples(MeasuredTrace& m, const std::vector<double>& t, const circuit::Circuit& circuit,
+                     const std::vector<std::vector<double>>& smoothed,
+                     const std::vector<std::vector<double>>& impact_volts, std::size_t before, double duration) {
+  const double unit = circuit.machine.unit_volts;
+  const double end = m.start + circuit.beta * duration * (1 + 1e-9);
+  for (std::size_t i = before; i < t.size(); ++i) {
+    m.machine_t.push_back(t[i] - m.start);
+    for (std::size_t k = 0; k < m.readings.size(); ++k)
+      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * smoothed[k][i] / unit);
+    if (t[i] > end) continue;
+    m.trace.t.push_back((t[i] - m.start) / circuit.beta);
+    m.impact_trace.t.push_back(m.trace.t.back());
+    for (std::size_t k = 0; k < m.readings.size(); ++k) {
+      const Signal s = m.readings[k].signal;
+      const double physical = m.readings[k].sign / unit * circuit.probes.at(s).full_scale;
+      m.trace.signals[s].push_back(physical * smoothed[k][i]);
+      m.impact_trace.signals[s].push_back(physical * impact_volts[k][i]);
+    }
+  }
+}
+
 }  // namespace
 
 MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o, const circuit::Circuit& circuit,
@@ -223,21 +247,7 @@ MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o,
     m.resolution.push_back(smooth_channel(m.readings[k], machine_volts[k], smoothed[k], before, half, unit));
     impact_volts[k] = smooth_moving_average(machine_volts[k], half / 2);
   }
-  const double end = m.start + circuit.beta * duration * (1 + 1e-9);
-  for (std::size_t i = before; i < rec.t.size(); ++i) {
-    m.machine_t.push_back(rec.t[i] - m.start);
-    for (std::size_t k = 0; k < m.readings.size(); ++k)
-      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * smoothed[k][i] / unit);
-    if (rec.t[i] > end) continue;
-    m.trace.t.push_back((rec.t[i] - m.start) / circuit.beta);
-    m.recorded.t.push_back(m.trace.t.back());
-    for (std::size_t k = 0; k < m.readings.size(); ++k) {
-      const Signal s = m.readings[k].signal;
-      const double physical = m.readings[k].sign / unit * circuit.probes.at(s).full_scale;
-      m.trace.signals[s].push_back(physical * smoothed[k][i]);
-      m.recorded.signals[s].push_back(physical * impact_volts[k][i]);
-    }
-  }
+  convert_samples(m, rec.t, circuit, smoothed, impact_volts, before, duration);
   if (m.trace.t.size() < 2)
     throw Error(fmt::format("{}: fewer than two samples between the run's start (t = {:.6g} s) and its end", o.path,
                             m.start));

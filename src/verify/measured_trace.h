@@ -68,7 +68,9 @@ struct MeasuredTrace {
   /// came from ("probe x10 (the file)"); none for a column read as written.
   std::map<Signal, std::string> applied;
   CircuitTrace trace;                  ///< smoothed: what the tube judges
-  CircuitTrace recorded;               ///< as recorded: the impacts' instants, speeds and peaks
+  /// Smoothed over half the window: the impacts' instants, speeds and
+  /// peaks, which a wider window would bend at a contact's kink.
+  CircuitTrace impact_trace;
   std::vector<Overload> overloads;     ///< a column beyond ±1 machine unit
   /// Every recorded column after the start, machine units (sign, probe and
   /// offset applied), on machine seconds since the start: for the diagnosis.

@@ -76,9 +76,9 @@ void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::C
   settings.grazing_depth =
       std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
   settings.contact_hysteresis = dphi_resolution;
-  // The tube judges the smoothed trace; the impacts' instants, speeds and
-  // peaks are read as recorded, where a window across a contact's kink would bend them.
-  r.comparison = compare(reference, m.recorded, model, settings);
+  // The tube judges the smoothed trace; the impacts are read on the one
+  // smoothed over half the window, which bends a contact's kink less.
+  r.comparison = compare(reference, m.impact_trace, model, settings);
   r.comparison.signals = compare(reference, r.circuit, model, settings).signals;
   r.overloads = m.overloads;
 }
