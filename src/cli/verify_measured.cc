@@ -36,7 +36,9 @@ nlohmann::json measured_json(const verify::MeasuredVerify& v, const std::string&
                       {"start_given", m.start_given}, {"span", m.span}};
   for (const auto& r : m.resolution) {
     j["channels"][to_string(r.signal)] = {{"channel", r.channel}, {"step_volts", r.step_volts},
-                                          {"noise_volts", r.noise_volts}, {"resolution", r.fraction}};
+                                          {"noise_volts", r.noise_volts}, {"resolution", r.fraction},
+                                          {"resolution_as_recorded", r.recorded},
+                                          {"smoothed_over", r.smoothed_over}};
     if (const auto a = m.applied.find(r.signal); a != m.applied.end())
       j["channels"][to_string(r.signal)]["applied"] = a->second;
   }
