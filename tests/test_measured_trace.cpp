@@ -18,183 +18,10 @@
 #include "verify/measured_verify.h"
 #include "verify/report.h"
 #include "verify/scope_formats.h"
+#include "scope_recording.h"
 
 using namespace gearpatch;
-
-namespace {
-
-/// One hardware-level run of the driven example on a machine, shared by every test here.
-struct MachineRun {
-  Scene scene;
-  verify::VerifyResult result;
-};
-
-const MachineRun& hardware_run(const std::string& machine, double alpha13_factor = 1) {
-  static std::map<std::pair<std::string, double>, MachineRun> runs;
-  const auto key = std::pair{machine, alpha13_factor};
-  if (!runs.count(key)) {
-    const Scene scene = load_scene(testing::scene_path("driven"), machine);
-    verify::VerifyOptions o;
-    o.level = circuit::Level::hardware;
-    o.tolerance = 0.02;
-    if (alpha13_factor != 1)
-      o.alter_circuit = [alpha13_factor](circuit::Circuit& c) { c.dial_settings.at(Setting::alpha13) *= alpha13_factor; };
-    auto ngspice = spice::make_batch_ngspice();
-    runs.emplace(key, MachineRun{scene, verify::verify(scene, o, *ngspice)});
-  }
-  return runs.at(key);
-}
-
-/// How the scope recorded: its record length, where the run starts on its
-/// time axis (the trigger at 0), the probe's gain, the noise (in 8-bit steps).
-struct ScopeSetup {
-  std::size_t record_length = 2000;
-  double run_start = -0.37;        ///< scope s; the trigger fired after the run began
-  double probe_gain = 1.01;        ///< the probe reads 1 % high
-  double noise_steps = 0.3;        ///< rms noise in quantisation steps
-  double time_stretch = 1;         ///< the machine's time runs this much slower than β says
-  std::vector<double> signs = {1, 1, 1, 1};   ///< per channel, CH1..CH4
-  std::vector<int> order = {0, 1, 2, 3};      ///< channel k shows signal order[k]
-  std::size_t channels = 4;
-};
-
-/// Channel volts per scope sample, and the scope's time axis.
-struct Recording {
-  std::vector<double> t;
-  std::vector<std::vector<double>> volts;
-  double step = 0;  ///< s between samples
-};
-
-double interpolate(const std::vector<double>& t, const std::vector<double>& y, double at) {
-  if (at <= t.front()) return y.front();
-  if (at >= t.back()) return y.back();
-  const std::size_t j = std::upper_bound(t.begin(), t.end(), at) - t.begin();
-  return y[j - 1] + (at - t[j - 1]) / (t[j] - t[j - 1]) * (y[j] - y[j - 1]);
-}
-
-/// The volts per division a signal is recorded at: the finest 1-2-5 scale
-/// holding its peak, as the patch sheet's watch list gives it.
-double recorded_scale(const MachineRun& run, Signal signal) {
-  const auto& r = run.result;
-  const auto fs = std::find_if(r.comparison.signals.begin(), r.comparison.signals.end(),
-                               [&](const auto& e) { return e.signal == signal; })->full_scale;
-  return verify::watch_scale(peak(r.reference.peaks, signal).value / fs, run.scene.machine.unit_volts);
-}
-
-Recording record(const MachineRun& run, const ScopeSetup& s) {
-  const auto& r = run.result;
-  const double unit = run.scene.machine.unit_volts;
-  const double machine_run = r.beta * r.duration * s.time_stretch;  // machine seconds of the run
-  const double from = s.run_start - 0.1 * machine_run, to = s.run_start + 1.05 * machine_run;
-  Recording rec;
-  rec.step = (to - from) / static_cast<double>(s.record_length - 1);
-  std::mt19937 random(20261127);
-  std::normal_distribution<double> gauss(0, 1);
-  for (std::size_t i = 0; i < s.record_length; ++i) rec.t.push_back(from + static_cast<double>(i) * rec.step);
-  for (std::size_t k = 0; k < s.channels; ++k) {
-    const Signal signal = all_signals[s.order[k]];
-    const auto fs = std::find_if(r.comparison.signals.begin(), r.comparison.signals.end(),
-                                 [&](const auto& e) { return e.signal == signal; })->full_scale;
-    const double vdiv = recorded_scale(run, signal);
-    const double lsb = 8 * vdiv / 256;
-    std::vector<double> v;
-    for (double t : rec.t) {
-      const double real = (t - s.run_start) / (r.beta * s.time_stretch);
-      const double volts = interpolate(r.circuit.t, r.circuit.signals.at(signal), real) / fs * unit;
-      const double seen = s.signs[k] * volts * s.probe_gain + s.noise_steps * lsb * gauss(random);
-      v.push_back(std::clamp(std::round(seen / lsb), -128.0, 127.0) * lsb);
-    }
-    rec.volts.push_back(std::move(v));
-  }
-  return rec;
-}
-
-/// The recording as each format's manual shows its CSV export.
-std::string write_as(const Recording& rec, const std::string& format) {
-  std::string out;
-  const std::size_t n = rec.volts.size();
-  if (format == "keysight") {  // InfiniiVision: "x-axis,1,2" / "second,Volt,Volt"
-    out = "x-axis";
-    for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{}", k + 1);
-    out += "\r\nsecond";
-    for (std::size_t k = 0; k < n; ++k) out += ",Volt";
-    out += "\r\n";
-    for (std::size_t i = 0; i < rec.t.size(); ++i) {
-      out += fmt::format("{:+.6E}", rec.t[i]);
-      for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{:+.6E}", rec.volts[k][i]);
-      out += "\r\n";
-    }
-  } else if (format == "rigol") {  // DS1000Z: "X,CH1,CH2,Start,Increment," / "Sequence,Volt,Volt,start,inc"
-    out = "X";
-    for (std::size_t k = 0; k < n; ++k) out += fmt::format(",CH{}", k + 1);
-    out += ",Start,Increment,\nSequence";
-    for (std::size_t k = 0; k < n; ++k) out += ",Volt";
-    out += fmt::format(",{:.6e},{:.6e}\n", rec.t.front(), rec.step);
-    for (std::size_t i = 0; i < rec.t.size(); ++i) {
-      out += fmt::format("{}", i);
-      for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{:.2e}", rec.volts[k][i] + 0.0);  // no "-0"
-      out += ",\n";
-    }
-  } else if (format == "rohde-schwarz") {  // RTB2000: "in s,CH1 in V,CH2 in V"
-    out = "in s";
-    for (std::size_t k = 0; k < n; ++k) out += fmt::format(",CH{} in V", k + 1);
-    out += "\r\n";
-    for (std::size_t i = 0; i < rec.t.size(); ++i) {
-      out += fmt::format("{:.6E}", rec.t[i]);
-      for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{:.4E}", rec.volts[k][i]);
-      out += "\r\n";
-    }
-  } else {  // plain: comments, a header line, a units row in ms and mV
-    out = "# driven on the machine, recorded by a test\nt";
-    for (std::size_t k = 0; k < n; ++k) out += fmt::format(",CH{}", k + 1);
-    out += "\nms";
-    for (std::size_t k = 0; k < n; ++k) out += ",mV";
-    out += "\n";
-    for (std::size_t i = 0; i < rec.t.size(); ++i) {
-      out += fmt::format("{:.9g}", 1e3 * rec.t[i]);
-      for (std::size_t k = 0; k < n; ++k) out += fmt::format(",{:.6g}", 1e3 * rec.volts[k][i]);
-      out += "\n";
-    }
-  }
-  return out;
-}
-
-verify::MeasuredVerify judge(const MachineRun& run, const std::string& text, double tolerance = 0.02,
-                             verify::MeasuredOptions mo = {}) {
-  verify::VerifyOptions o;
-  o.tolerance = tolerance;
-  if (mo.path.empty()) mo.path = "recording.csv";
-  return verify::verify_measured(run.scene, o, text, mo);
-}
-
-const std::vector<std::pair<std::string, std::size_t>> formats = {
-    {"csv", 3000}, {"keysight", 2000}, {"rigol", 1200}, {"rohde-schwarz", 2500}};
-
-std::string all_diagnosis(const verify::VerifyResult& r) {
-  std::string s;
-  for (const auto& d : r.diagnosis) s += d + "\n";
-  return s;
-}
-
-/// Each recorded signal's error exceeds the run's own by at most what the
-/// recording adds: its resolution, the probe's 1 % of the signal's peak and
-/// four times its noise.
-void check_error_within_recording(const MachineRun& run, const verify::MeasuredVerify& v) {
-  for (const auto& res : v.measured.resolution) {
-    const auto error = [&](const verify::VerifyResult& r) {
-      for (const auto& e : r.comparison.signals)
-        if (e.signal == res.signal) return e.max_error;
-      return 1.0;
-    };
-    const double peak_mu = std::abs(peak(run.result.reference.peaks, res.signal).value) /
-                           run.result.comparison.signals[static_cast<int>(res.signal)].full_scale;
-    INFO(to_string(res.signal) << ": run " << error(run.result) << ", recording " << error(v.result));
-    CHECK(error(v.result) <= error(run.result) + res.fraction + 0.01 * peak_mu +
-                                 4 * res.noise_volts / run.scene.machine.unit_volts);
-  }
-}
-
-}  // namespace
+using namespace gearpatch::testing;
 
 TEST_CASE("each scope format is read as its manual shows it", "[verify]") {
   // Keysight InfiniiVision: channel numbers, a units row, "+" signs, CRLF.
@@ -227,6 +54,16 @@ TEST_CASE("each scope format is read as its manual shows it", "[verify]") {
   CHECK(p.t[1] == Approx(2e-3));
   CHECK(p.find("CH2")->volts[1] == Approx(0.25));
   CHECK(p.find("omega_p")->volts[0] == 1);
+  CHECK(p.probe.empty());
+  // A plain CSV's comments may give probe ratios and offsets; other comments are notes.
+  auto c = verify::read_scope_csv("# probe CH1=10, ch2=10\n# offset 2=0.05\n# offset of the logger: unknown\n"
+                                  "t,CH1,CH2\n0,1,2\n1,1,2\n", "c.csv");
+  CHECK(c.probe == std::map<std::string, double>{{"CH1", 10}, {"CH2", 10}});
+  CHECK(c.offset == std::map<std::string, double>{{"CH2", 0.05}});
+  CHECK_THROWS_WITH(verify::read_scope_csv("# probe CH1=0\nt,CH1\n0,1\n1,1\n", "z.csv"),
+                    Catch::Contains("z.csv:1: '# probe CH1=0': write CHANNEL=RATIO"));
+  for (const auto& scope : {k, r, s, m})  // the scopes' exports record neither
+    CHECK((scope.probe.empty() && scope.offset.empty()));
   // --format names the layout; a file not in it is refused with its line.
   CHECK_THROWS_WITH(verify::read_scope_csv("t,CH1\n0,1\n1,x\n", "bad.csv"),
                     Catch::Contains("bad.csv:3: 'x' (column 2) is not a number"));
@@ -261,10 +98,10 @@ TEST_CASE("recordings of the hardware run pass at 2 % on each machine in every s
   // Every recording must also stay within what the recording adds of its run's own error.
   for (const auto& [machine, tolerance] : std::vector<std::pair<std::string, double>>{
            {"the-analog-thing", 0.02}, {"model-1", 0.02}, {"classic", 0.02}}) {
-    const MachineRun& run = hardware_run(machine);
+    const MachineRun& run = hardware_run("driven", machine);
     INFO(machine << "\n" << verify::to_table(run.result));
     REQUIRE(run.result.passed);
-    for (const auto& [format, length] : formats) {
+    for (const auto& [format, length] : scope_formats()) {
       ScopeSetup setup;
       setup.record_length = length;
       const Recording rec = record(run, setup);
@@ -288,9 +125,8 @@ TEST_CASE("recordings of fresh random scenes on the classic machine add no more 
           "[verify][ngspice]") {
   // Scenes the reading was not tuned on: the seeded generator, a seed of its
   // own. A signal peaking near 1 MU is watched at 5 V/div, whose 8-bit steps
-  // are 1.56 % of the unit: with the probe's 1 % such recordings need more
-  // than 2 % (measured: omega_p 2.9 % and 2.4 % here), so the check is that
-  // the recording adds no more error than it brings, and finds the start.
+  // are 1.56 % of the unit; smoothed before the tube, the recordings pass at
+  // 2 %, add no more error than they bring, and the start is found.
   for (int index : {2, 6}) {
     const RandomScene random = random_scene(20261127, index);
     MachineRun run{parse_scene(random.text, random.name + ".ini", "classic"), {}};
@@ -305,7 +141,7 @@ TEST_CASE("recordings of fresh random scenes on the classic machine add no more 
       ScopeSetup setup;
       setup.record_length = length;
       setup.run_start = -0.1 * run.result.beta * run.result.duration;
-      const auto v = judge(run, write_as(record(run, setup), format), 0.03);
+      const auto v = judge(run, write_as(record(run, setup), format), 0.02);
       INFO(format << "\n" << verify::to_table(v.result));
       CHECK(v.result.passed);
       CHECK(v.measured.start == Approx(setup.run_start).margin(0.005 * run.result.beta * run.result.duration));
@@ -315,16 +151,19 @@ TEST_CASE("recordings of fresh random scenes on the classic machine add no more 
 }
 
 TEST_CASE("a recording of the machine with one potentiometer 10 % off fails", "[verify][ngspice]") {
-  const MachineRun& detuned = hardware_run("model-1", 0.9);
+  // On driven the deck with alpha13 10 % low stays within 2 % (and so does its
+  // recording, test_recorded_examples.cpp); on bild5b the deck fails.
+  const MachineRun& detuned = hardware_run("bild5b", "model-1", 0.9);
+  REQUIRE(!detuned.result.passed);
   const auto v = judge(detuned, write_as(record(detuned, {}), "keysight"));
-  INFO(verify::to_table(v.result));
+  INFO("deck:\n" << verify::to_table(detuned.result) << "recording:\n" << verify::to_table(v.result));
   CHECK(!v.result.passed);
-  CHECK_THAT(verify::to_table(v.result), Catch::Contains("FAIL") && Catch::Contains("leaves the tube"));
-  CHECK_THAT(all_diagnosis(v.result), Catch::Contains("no inverted channel, swap of two channels or other time scale"));
+  CHECK_THAT(verify::to_table(v.result), Catch::Contains("FAIL"));
+  CHECK_THAT(all_diagnosis(v.result), !Catch::Contains("is inverted") && !Catch::Contains("are swapped"));
 }
 
 TEST_CASE("an inverted channel, two swapped channels and another time scale are named", "[verify][ngspice]") {
-  const MachineRun& run = hardware_run("model-1");
+  const MachineRun& run = hardware_run("driven", "model-1");
   ScopeSetup inverted;
   inverted.signs = {-1, 1, 1, 1};
   auto v = judge(run, write_as(record(run, inverted), "rigol"));
@@ -355,7 +194,7 @@ TEST_CASE("an inverted channel, two swapped channels and another time scale are 
 
 TEST_CASE("a recording is judged on the channels present, and not finer than its own resolution",
           "[verify][ngspice]") {
-  const MachineRun& run = hardware_run("model-1");
+  const MachineRun& run = hardware_run("driven", "model-1");
   ScopeSetup three;
   three.channels = 3;
   const auto v = judge(run, write_as(record(run, three), "rohde-schwarz"));
@@ -378,6 +217,34 @@ TEST_CASE("a recording is judged on the channels present, and not finer than its
   CHECK(g.measured.start_given);
 }
 
+TEST_CASE("a probe ratio and an offset come from a plain CSV's comments or the options", "[verify][ngspice]") {
+  // A 10:1 probe the scope was not told of, and every channel 0.3 V high at the machine.
+  const MachineRun& run = hardware_run("driven", "model-1");
+  ScopeSetup divided;
+  divided.attenuation = 10;
+  divided.offset = 0.3;
+  const Recording rec = record(run, divided);
+  const std::string said = "# probe CH1=10 CH2=10 CH3=10 CH4=10\n# offset CH1=0.3 CH2=0.3 CH3=0.3 CH4=0.3\n";
+  auto v = judge(run, write_as(rec, "csv", said));
+  INFO(verify::to_table(v.result));
+  CHECK(v.result.passed);
+  CHECK_THAT(verify::to_table(v.result), Catch::Contains("probe x10 (the file), offset 0.3 V (the file)"));
+  check_error_within_recording(run, v);
+  // Unsaid, the recording is a tenth of the machine's signals and fails.
+  CHECK(!judge(run, write_as(rec, "csv")).result.passed);
+  // The options say it for a file that does not, and come before the file's word.
+  verify::MeasuredOptions options;
+  for (const char* ch : {"CH1", "CH2", "CH3", "CH4"}) options.probe[ch] = 10, options.offset[ch] = 0.3;
+  v = judge(run, write_as(rec, "rigol"), 0.02, options);
+  CHECK(v.result.passed);
+  CHECK_THAT(verify::to_table(v.result), Catch::Contains("probe x10 (--probe), offset 0.3 V (--offset)"));
+  options.probe = {{"CH1", 1}};
+  options.offset = {};
+  v = judge(run, write_as(rec, "csv", said), 0.02, options);
+  CHECK(!v.result.passed);
+  CHECK_THAT(verify::to_table(v.result), Catch::Contains("probe x1 (--probe), offset 0.3 V (the file)"));
+}
+
 TEST_CASE("verify --measured runs the example recording in scenes/traces as the docs show", "[verify][cli]") {
   std::string output;
   const std::string command = std::string(GEARPATCH_BINARY) + " verify " + testing::scene_path("driven") +
@@ -390,12 +257,18 @@ TEST_CASE("verify --measured runs the example recording in scenes/traces as the 
   CHECK_THAT(output, Catch::Contains("omega_p matches -1 × the reference"));
   CHECK(testing::run_command(command + " --deck x.cir", output) == 2);
   CHECK_THAT(output, Catch::Contains("--deck and --measured"));
+  // verify --help shows the workflow, ending in the command run above.
+  CHECK(testing::run_command(std::string(GEARPATCH_BINARY) + " verify --help", output) == 0);
+  CHECK_THAT(output, Catch::Contains("1. patch:  gearpatch patch scenes/driven.ini --machine model-1") &&
+                         Catch::Contains("2. wire:") && Catch::Contains("3. record:") &&
+                         Catch::Contains("4. verify: gearpatch verify scenes/driven.ini --machine model-1 \\\n"
+                                         "               --measured scenes/traces/driven.model-1.csv"));
 }
 
 // Writes scenes/traces/driven.model-1.csv, the docs' example: a Rigol
 // DS1000Z recording of driven on the Model-1 (1200 points).
 TEST_CASE("write the example recording", "[.write-example][verify]") {
-  const MachineRun& run = hardware_run("model-1");
+  const MachineRun& run = hardware_run("driven", "model-1");
   ScopeSetup setup;
   setup.record_length = 1200;
   write_file_atomically(testing::source_path("scenes/traces/driven.model-1.csv"),

@@ -111,8 +111,17 @@ int run_verify(const std::vector<std::string>& args) {
                        "profile draws, moves a signal beyond the tolerance (measured on copies of the\n"
                        "deck), naming its panel element and the remedy. Exit status 0:\n"
                        "pass, 1: fail, 2: bad input, 3: ngspice failed, or its output holds NaN or\n"
-                       "ends short of the run (the deck is kept), 4: internal error. With --measured\n"
-                       "FILE it judges an oscilloscope recording of the patched machine instead.",
+                       "ends short of the run (the deck is kept), 4: internal error.\n\n"
+                       "With --measured FILE it judges an oscilloscope recording of the patched\n"
+                       "machine instead (docs/recorded-traces.md):\n"
+                       "  1. patch:  gearpatch patch scenes/driven.ini --machine model-1\n"
+                       "             (the settings and the sheet for the machine)\n"
+                       "  2. wire:   set the potentiometers, wire the sheet, and put CH1..CH4 on the\n"
+                       "             outputs and volts per division its oscilloscope section names\n"
+                       "  3. record: the sheet's time base and trigger; IC, arm the scope, OP; save\n"
+                       "             the waveform as CSV (plain, Keysight, Rigol or R&S export)\n"
+                       "  4. verify: gearpatch verify scenes/driven.ini --machine model-1 \\\n"
+                       "               --measured scenes/traces/driven.model-1.csv",
                        options,
                        {"gearpatch verify scenes/bild5b.ini --json bild5b.json",
                         "gearpatch verify scenes/bild5a.ini --level hardware --autoscale --tolerance 2%",

@@ -34,9 +34,14 @@ nlohmann::json measured_json(const verify::MeasuredVerify& v, const std::string&
   const verify::MeasuredTrace& m = v.measured;
   nlohmann::json j = {{"file", path}, {"format", m.format}, {"samples", m.samples}, {"start", m.start},
                       {"start_given", m.start_given}, {"span", m.span}};
-  for (const auto& r : m.resolution)
+  for (const auto& r : m.resolution) {
     j["channels"][to_string(r.signal)] = {{"channel", r.channel}, {"step_volts", r.step_volts},
-                                          {"noise_volts", r.noise_volts}, {"resolution", r.fraction}};
+                                          {"noise_volts", r.noise_volts}, {"resolution", r.fraction},
+                                          {"resolution_as_recorded", r.recorded},
+                                          {"smoothed_over", r.smoothed_over}};
+    if (const auto a = m.applied.find(r.signal); a != m.applied.end())
+      j["channels"][to_string(r.signal)]["applied"] = a->second;
+  }
   j["not_recorded"] = nlohmann::json::array();
   for (Signal s : m.missing) j["not_recorded"].push_back(to_string(s));
   return j;
@@ -59,9 +64,10 @@ void add_measured_options(po::options_description& options) {
       ("start", po::value<double>(), "scope time (s) where the machine went from IC to OP; default: found where "
        "the signals leave their initial values")
       ("probe", po::value<std::vector<std::string>>()->composing(), "CHANNEL=RATIO, repeatable: multiply the "
-       "column's volts by RATIO (a probe attenuation the scope was not set to)")
+       "column's volts by RATIO (a probe attenuation the scope was not set to; the scopes' CSV exports record "
+       "none, a plain CSV may say '# probe CH1=10', which this option overrides)")
       ("offset", po::value<std::vector<std::string>>()->composing(), "CHANNEL=VOLTS, repeatable: subtract the "
-       "channel's offset (after the probe ratio)");
+       "channel's offset (after the probe ratio; a plain CSV may say '# offset CH1=0.05')");
 }
 
 int run_verify_measured(const po::variables_map& vm, const std::string& scene_file,

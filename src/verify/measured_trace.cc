@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "verify/trace_smoothing.h"
 
 namespace gearpatch::verify {
 namespace {
@@ -122,9 +123,26 @@ std::vector<ChannelReading> readings_of(const MeasuredOptions& o, const std::vec
   return out;
 }
 
-double option_value(const std::map<std::string, double>& m, const std::string& channel, double otherwise) {
-  const auto it = m.find(channel);
-  return it == m.end() ? otherwise : it->second;
+/// A channel's probe ratio or offset: the option's, else the file's, else
+/// `otherwise`; `said` gets where it came from ("" for neither).
+double channel_setting(const std::map<std::string, double>& option, const std::map<std::string, double>& file,
+                       const std::string& channel, double otherwise, const std::string& option_name,
+                       std::string& said) {
+  said = "";
+  for (const auto& [map, name] : {std::pair{&option, option_name}, std::pair{&file, std::string("the file")}})
+    if (const auto it = map->find(channel); it != map->end()) {
+      said = name;
+      return it->second;
+    }
+  return otherwise;
+}
+
+/// "probe x10 (the file), offset 0.05 V (--offset)" for what was applied to a column, or "".
+std::string settings_note(double probe, const std::string& probe_from, double offset, const std::string& offset_from) {
+  std::string note;
+  if (!probe_from.empty()) note = fmt::format("probe x{:g} ({})", probe, probe_from);
+  if (!offset_from.empty()) note += fmt::format("{}offset {:g} V ({})", note.empty() ? "" : ", ", offset, offset_from);
+  return note;
 }
 
 /// Each recorded column's worst excursion beyond ±1 machine unit, its steps and noise allowed.
@@ -142,10 +160,53 @@ std::vector<Overload> recorded_overloads(const MeasuredTrace& m) {
   return out;
 }
 
+/// Smooths one column over `half` samples either side into `smoothed` and
+/// states its resolution as recorded and as judged.
+ChannelResolution smooth_channel(const ChannelReading& reading, const std::vector<double>& volts,
+                                 std::vector<double>& smoothed, std::size_t before, std::size_t half, double unit) {
+  ChannelResolution r{reading.signal, reading.channel, quantisation_step(volts), noise(volts, before)};
+  r.recorded = r.fraction = std::max(r.step_volts, 2 * r.noise_volts) / unit;
+  smoothed = volts;
+  if (half < 1 || 2 * half + 1 > volts.size()) return r;
+  smoothed = smooth_moving_average(volts, half);
+  r.noise_volts = residual_noise(volts, smoothed, half);
+  r.recorded = std::max(r.step_volts, 2 * r.noise_volts) / unit;
+  r.smoothed_over = 2 * half + 1;
+  // The noise before the steps (the residual holds the steps' own step²/12 too) dithers them.
+  const double analog = std::sqrt(std::max(0.0, r.noise_volts * r.noise_volts - r.step_volts * r.step_volts / 12));
+  r.fraction = std::max(2 * r.noise_volts * std::sqrt(smoothed_noise_gain(half)),
+                        dithered_quantisation_bias(r.step_volts, analog)) / unit;
+  return r;
+}
+
+/// The samples from the start on into machine units (all of them) and into
+/// physical units and real time (up to the run's end): the smoothed columns
+/// for the tube, the ones smoothed over half the window for the impacts.
+void convert_samples(MeasuredTrace& m, const std::vector<double>& t, const circuit::Circuit& circuit,
+                     const std::vector<std::vector<double>>& smoothed,
+                     const std::vector<std::vector<double>>& impact_volts, std::size_t before, double duration) {
+  const double unit = circuit.machine.unit_volts;
+  const double end = m.start + circuit.beta * duration * (1 + 1e-9);
+  for (std::size_t i = before; i < t.size(); ++i) {
+    m.machine_t.push_back(t[i] - m.start);
+    for (std::size_t k = 0; k < m.readings.size(); ++k)
+      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * smoothed[k][i] / unit);
+    if (t[i] > end) continue;
+    m.trace.t.push_back((t[i] - m.start) / circuit.beta);
+    m.impact_trace.t.push_back(m.trace.t.back());
+    for (std::size_t k = 0; k < m.readings.size(); ++k) {
+      const Signal s = m.readings[k].signal;
+      const double physical = m.readings[k].sign / unit * circuit.probes.at(s).full_scale;
+      m.trace.signals[s].push_back(physical * smoothed[k][i]);
+      m.impact_trace.signals[s].push_back(physical * impact_volts[k][i]);
+    }
+  }
+}
+
 }  // namespace
 
 MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o, const circuit::Circuit& circuit,
-                            const std::vector<WatchedSignal>& watch, double duration) {
+                            const std::vector<WatchedSignal>& watch, double duration, double smoothing) {
   MeasuredTrace m;
   m.format = rec.format, m.time_from = rec.time_from, m.samples = rec.t.size();
   const double unit = circuit.machine.unit_volts;
@@ -156,9 +217,13 @@ MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o,
       m.missing.push_back(r.signal);
       continue;
     }
-    const double probe = option_value(o.probe, column->channel, 1), offset = option_value(o.offset, column->channel, 0);
+    std::string probe_from, offset_from;
+    const double probe = channel_setting(o.probe, rec.probe, column->channel, 1, "--probe", probe_from);
+    const double offset = channel_setting(o.offset, rec.offset, column->channel, 0, "--offset", offset_from);
     std::vector<double> v = column->volts;
     for (double& x : v) x = probe * x - offset;
+    if (const std::string note = settings_note(probe, probe_from, offset, offset_from); !note.empty())
+      m.applied[r.signal] = note;
     m.readings.push_back({r.signal, column->channel, r.sign});
     machine_volts.push_back(std::move(v));
   }
@@ -175,25 +240,14 @@ MeasuredTrace measure_trace(const ScopeRecording& rec, const MeasuredOptions& o,
   m.start_given = o.start.has_value();
   m.start = o.start ? *o.start : find_run_start(rec.t, machine_volts, unit, o.path);
   const std::size_t before = static_cast<std::size_t>(std::lower_bound(rec.t.begin(), rec.t.end(), m.start) - rec.t.begin());
+  const double interval = (rec.t.back() - rec.t.front()) / static_cast<double>(rec.t.size() - 1);
+  const auto half = static_cast<std::size_t>(std::max(0.0, std::floor(smoothing * circuit.beta / interval)));
+  std::vector<std::vector<double>> smoothed(m.readings.size()), impact_volts(m.readings.size());
   for (std::size_t k = 0; k < m.readings.size(); ++k) {
-    const auto& v = machine_volts[k];
-    const double step = quantisation_step(v), sigma = noise(v, before);
-    m.resolution.push_back({m.readings[k].signal, m.readings[k].channel, step, sigma,
-                            std::max(step, 2 * sigma) / unit});
+    m.resolution.push_back(smooth_channel(m.readings[k], machine_volts[k], smoothed[k], before, half, unit));
+    impact_volts[k] = smooth_moving_average(machine_volts[k], half / 2);
   }
-  const double end = m.start + circuit.beta * duration * (1 + 1e-9);
-  for (std::size_t i = before; i < rec.t.size(); ++i) {
-    m.machine_t.push_back(rec.t[i] - m.start);
-    for (std::size_t k = 0; k < m.readings.size(); ++k)
-      m.machine_units[m.readings[k].signal].push_back(m.readings[k].sign * machine_volts[k][i] / unit);
-    if (rec.t[i] > end) continue;
-    m.trace.t.push_back((rec.t[i] - m.start) / circuit.beta);
-    for (std::size_t k = 0; k < m.readings.size(); ++k) {
-      const Signal s = m.readings[k].signal;
-      const double mu = m.readings[k].sign * machine_volts[k][i] / unit;
-      m.trace.signals[s].push_back(mu * circuit.probes.at(s).full_scale);
-    }
-  }
+  convert_samples(m, rec.t, circuit, smoothed, impact_volts, before, duration);
   if (m.trace.t.size() < 2)
     throw Error(fmt::format("{}: fewer than two samples between the run's start (t = {:.6g} s) and its end", o.path,
                             m.start));

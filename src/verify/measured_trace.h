@@ -26,7 +26,7 @@ ChannelReading parse_channel_reading(const std::string& text);
 std::pair<std::string, double> parse_channel_number(const std::string& option, const std::string& text);
 
 /// How to read a recording: which signal on which column, the probe ratio
-/// the scope was not told of, the offset, the run's start.
+/// the scope was not told of, the offset (each before the file's own), the run's start.
 struct MeasuredOptions {
   std::string path;                     ///< for messages
   std::string format = "auto";
@@ -37,13 +37,19 @@ struct MeasuredOptions {
 };
 
 /// One channel's own resolution: its quantisation step and its noise, at the
-/// machine (probe ratio applied), measured on the recording.
+/// machine (probe ratio applied), measured on the recording, as recorded and
+/// after the smoothing that is judged.
 struct ChannelResolution {
   Signal signal{};
   std::string channel;
   double step_volts = 0;   ///< smallest step between the values the column takes
-  double noise_volts = 0;  ///< rms about the median before the run starts; 0 if no such samples
-  double fraction = 0;     ///< max(step, 2·noise) / the machine unit: the finest tolerance it can judge
+  double noise_volts = 0;  ///< rms per sample: from the smoothing's residual, else about the median before the start
+  double recorded = 0;     ///< max(step, 2·noise) / the machine unit, one sample as recorded
+  std::size_t smoothed_over = 1;  ///< samples in the smoothing's window (1: not smoothed)
+  /// The finest tolerance the judged trace can tell, / the machine unit:
+  /// twice the smoothed noise, or the steps' mean error the noise does not
+  /// dither away, whichever is larger (as recorded if not smoothed).
+  double fraction = 0;
 };
 
 /// A recording read as the machine's signals: the columns found, the run's
@@ -58,7 +64,13 @@ struct MeasuredTrace {
   bool start_given = false;            ///< --start, not found from the trace
   double span = 0;                     ///< real s of the run the recording covers
   std::vector<ChannelResolution> resolution;
-  CircuitTrace trace;
+  /// The probe ratio and offset applied to a signal's column and where each
+  /// came from ("probe x10 (the file)"); none for a column read as written.
+  std::map<Signal, std::string> applied;
+  CircuitTrace trace;                  ///< smoothed: what the tube judges
+  /// Smoothed over half the window: the impacts' instants, speeds and
+  /// peaks, which a wider window would bend at a contact's kink.
+  CircuitTrace impact_trace;
   std::vector<Overload> overloads;     ///< a column beyond ±1 machine unit
   /// Every recorded column after the start, machine units (sign, probe and
   /// offset applied), on machine seconds since the start: for the diagnosis.
@@ -77,8 +89,10 @@ double find_run_start(const std::vector<double>& t, const std::vector<std::vecto
 /// Reads the columns of `watch` (or the options' --channel) off the
 /// recording and converts them with the circuit's scales: machine volts /
 /// the unit × each signal's full scale, scope seconds since the start / β.
+/// Each column is smoothed over `smoothing` real seconds either side of a
+/// sample (trace_smoothing.h; 0: as recorded) before it is judged.
 MeasuredTrace measure_trace(const ScopeRecording& recording, const MeasuredOptions& options,
                             const circuit::Circuit& circuit, const std::vector<WatchedSignal>& watch,
-                            double duration);
+                            double duration, double smoothing = 0);
 
 }  // namespace gearpatch::verify

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <fmt/format.h>
+#include <optional>
 
 #include "circuit/circuit.h"
 #include "model/gear_model.h"
@@ -11,6 +12,7 @@
 #include "solver/integrate.h"
 #include "verify/diagnosis.h"
 #include "verify/trace_likeness.h"
+#include "verify/trace_smoothing.h"
 
 namespace gearpatch::verify {
 namespace {
@@ -37,14 +39,19 @@ std::vector<WatchedSignal> sheet_watch_list(const circuit::Circuit& circuit) {
   return list;
 }
 
+/// " smoothed over 21 samples", or "" for a channel judged as recorded.
+std::string smoothed_over(const ChannelResolution& r) {
+  return r.smoothed_over > 1 ? fmt::format(" smoothed over {} samples", r.smoothed_over) : "";
+}
+
 void refuse_finer_than_resolution(const MeasuredTrace& m, double tolerance, const std::string& path) {
   for (const ChannelResolution& r : m.resolution)
     if (r.fraction > tolerance)
       throw Error(fmt::format("tolerance {:.3g} %: finer than {}'s own resolution on {} ({:.3g} % of the machine "
-                              "unit: steps of {:.4g} V, noise {:.4g} V rms); give --tolerance {:.2g}% or more, or "
+                              "unit{}: steps of {:.4g} V, noise {:.4g} V rms); give --tolerance {:.2g}% or more, or "
                               "record at a finer volts per division",
-                              100 * tolerance, path, r.channel, 100 * r.fraction, r.step_volts, r.noise_volts,
-                              100 * r.fraction * 1.05));
+                              100 * tolerance, path, r.channel, 100 * r.fraction, smoothed_over(r), r.step_volts,
+                              r.noise_volts, 100 * r.fraction * 1.05));
 }
 
 /// The comparison of the recording with the reference, as verify compares a deck's run.
@@ -69,8 +76,34 @@ void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::C
   settings.grazing_depth =
       std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
   settings.contact_hysteresis = dphi_resolution;
-  r.comparison = compare(reference, r.circuit, model, settings);
+  // The tube judges the smoothed trace; the impacts are read on the one
+  // smoothed over half the window, which bends a contact's kink less.
+  r.comparison = compare(reference, m.impact_trace, model, settings);
+  r.comparison.signals = compare(reference, r.circuit, model, settings).signals;
   r.overloads = m.overloads;
+}
+
+/// When every signal that leaves the tube does so by less than its channel's
+/// own resolution (an 8-bit step at a coarse volts per division, or noise),
+/// the recording may not tell the machine from the reference at this
+/// tolerance: that sentence in place of "computes something else"; else none.
+std::optional<std::string> too_coarse(const VerifyResult& r, const MeasuredTrace& m) {
+  std::string outside;
+  for (const SignalError& e : r.comparison.signals) {
+    if (e.max_error <= r.tolerance) continue;
+    const auto res = std::find_if(m.resolution.begin(), m.resolution.end(),
+                                  [&](const ChannelResolution& c) { return c.signal == e.signal; });
+    if (res == m.resolution.end() || e.max_error > r.tolerance + res->fraction) return std::nullopt;
+    outside += fmt::format("{}{} by {:.3g} % with its {}'s resolution {:.3g} % of 1 MU", outside.empty() ? "" : ", ",
+                           to_string(e.signal), 100 * e.max_error, res->channel, 100 * res->fraction);
+  }
+  if (outside.empty()) return std::nullopt;
+  return fmt::format("no inverted channel, swap of two channels or other time scale explains the recording, and "
+                     "every signal that leaves the tube does so by less than its recording's resolution ({}): the "
+                     "recording may be too coarse to judge at {:g} %; record those channels at a finer volts per "
+                     "division (the scope's vertical offset) or in its high-resolution mode before looking for a "
+                     "wrong setting or wire",
+                     outside, 100 * r.tolerance);
 }
 
 }  // namespace
@@ -106,7 +139,8 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
 
     out.watch = sheet_watch_list(circuit);
     const ScopeRecording recording = read_scope_csv(text, mo.path, mo.format);
-    out.measured = measure_trace(recording, mo, circuit, out.watch, scene.duration);
+    out.measured = measure_trace(recording, mo, circuit, out.watch, scene.duration,
+                                 smoothing_half_width(r.reference, r.tolerance, scene.duration));
     const MeasuredTrace& m = out.measured;
     refuse_finer_than_resolution(m, r.tolerance, mo.path);
 
@@ -114,6 +148,9 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     judge_comparison(r);
     if (!r.passed) {
       r.diagnosis = what_the_trace_looks_like(m, r.reference, model, circuit, scene.duration, r.tolerance);
+      if (const auto coarse = too_coarse(r, m); coarse && r.diagnosis.size() == 1 &&
+                                                r.diagnosis[0].rfind("no inverted channel", 0) == 0)
+        r.diagnosis[0] = *coarse;
       // The rules that read the run itself; the rest measure changed decks, which a recording has none of.
       for (const std::string& d : diagnose(r, patch))
         if (d.rfind("no rule applies", 0) != 0) r.diagnosis.push_back(d);
@@ -132,8 +169,13 @@ std::string measured_notes(const MeasuredVerify& v, const std::string& path) {
   for (const ChannelResolution& r : m.resolution) {
     const auto watched = std::find_if(v.watch.begin(), v.watch.end(), [&](const auto& w) { return w.signal == r.signal; });
     const auto reading = std::find_if(m.readings.begin(), m.readings.end(), [&](const auto& x) { return x.signal == r.signal; });
-    t += fmt::format("  {:<8} {:<4} sign {:+g}  resolution {:.3g} % of 1 MU (steps {:.4g} V, noise {:.3g} V rms){}\n",
-                     to_string(r.signal), r.channel, reading->sign, 100 * r.fraction, r.step_volts, r.noise_volts,
+    const auto applied = m.applied.find(r.signal);
+    t += fmt::format("  {:<8} {:<4} sign {:+g}  {}resolution {:.3g} % of 1 MU{} ({}steps {:.4g} V, noise {:.3g} V "
+                     "rms){}\n",
+                     to_string(r.signal), r.channel, reading->sign,
+                     applied == m.applied.end() ? "" : applied->second + ", ", 100 * r.fraction, smoothed_over(r),
+                     r.smoothed_over > 1 ? fmt::format("as recorded {:.3g} %: ", 100 * r.recorded) : "",
+                     r.step_volts, r.noise_volts,
                      watched == v.watch.end() ? ""
                                               : fmt::format("; sheet: {} at {:g} V/div", watched->channel,
                                                             watched->volts_per_div));

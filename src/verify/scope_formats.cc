@@ -112,7 +112,7 @@ std::vector<ScopeColumn> columns_named(const Row& header, std::size_t from, std:
 ScopeRecording read_keysight(const std::vector<Row>& rows, const std::string& path) {
   if (rows.size() < 3 || lower(rows[0].fields[0]) != "x-axis")
     refuse(path, rows.empty() ? 1 : rows[0].line, "not an InfiniiVision CSV: its first row is x-axis,1,2,...");
-  ScopeRecording rec{"keysight", "time column", {}, columns_named(rows[0], 1, rows[0].fields.size())};
+  ScopeRecording rec{"keysight", "time column", {}, columns_named(rows[0], 1, rows[0].fields.size()), {}, {}};
   std::vector<double> scales(rows[0].fields.size(), 1.0);
   read_data(rows, 2, scales, path, rec.t, rec.columns);
   return rec;
@@ -133,7 +133,8 @@ ScopeRecording read_rigol(const std::vector<Row>& rows, const std::string& path)
   const std::size_t start_at = at("start"), increment_at = at("increment");
   const double start = field_number(rows[1], start_at, path), increment = field_number(rows[1], increment_at, path);
   if (increment <= 0) refuse(path, rows[1].line, fmt::format("increment {:g} s: must be positive", increment));
-  ScopeRecording rec{"rigol", "start + n * increment", {}, columns_named(rows[0], 1, std::min(start_at, increment_at))};
+  ScopeRecording rec{"rigol", "start + n * increment", {}, columns_named(rows[0], 1, std::min(start_at, increment_at)),
+                     {}, {}};
   std::vector<double> scales(rec.columns.size() + 1, 1.0);
   read_data(rows, 2, scales, path, rec.t, rec.columns);
   for (double& t : rec.t) t = start + t * increment;
@@ -173,7 +174,7 @@ double unit_factor(const std::string& unit, bool time, const std::string& path, 
 ScopeRecording read_rohde_schwarz(const std::vector<Row>& rows, const std::string& path) {
   if (rows.size() < 2 || numeric(rows[0]))
     refuse(path, rows.empty() ? 1 : rows[0].line, "not an R&S CSV: its first row is 'in s,CH1 in V,...'");
-  ScopeRecording rec{"rohde-schwarz", "time column", {}, columns_named(rows[0], 1, rows[0].fields.size())};
+  ScopeRecording rec{"rohde-schwarz", "time column", {}, columns_named(rows[0], 1, rows[0].fields.size()), {}, {}};
   std::vector<double> scales;
   for (std::size_t k = 0; k < rows[0].fields.size(); ++k)
     scales.push_back(unit_factor(bracketed_unit(rows[0].fields[k]), k == 0, path, rows[0].line));
@@ -181,15 +182,46 @@ ScopeRecording read_rohde_schwarz(const std::vector<Row>& rows, const std::strin
   return rec;
 }
 
-/// A plain CSV: '#' comment lines, a header row (time first, then the
-/// channels), an optional row of units (s, ms, us, ns; V, mV), then numbers.
-/// Without a header the channels are CH1, CH2, ... in order.
+/// A comment "# probe CH1=10 CH2=10" or "# offset CH1=0.05": the channels'
+/// probe ratios or offsets (volts), blanks or commas between them. Other
+/// comments (no CHANNEL=NUMBER after the word) are notes.
+void read_channel_settings(const Row& comment, const std::string& path, ScopeRecording& rec) {
+  std::string text;
+  for (const std::string& f : comment.fields) text += f + " ";
+  std::replace(text.begin(), text.end(), '\t', ' ');
+  std::vector<std::string> words;
+  for (std::size_t at = 1; at < text.size();) {  // after the '#'
+    const std::size_t end = std::min(text.find(' ', at), text.size());
+    if (end > at) words.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  const auto setting = [](const std::string& w) { return w.find('=') != std::string::npos; };
+  if (words.size() < 2 || (lower(words[0]) != "probe" && lower(words[0]) != "offset") ||
+      !std::all_of(words.begin() + 1, words.end(), setting))
+    return;
+  const bool probe = lower(words[0]) == "probe";
+  for (std::size_t k = 1; k < words.size(); ++k) {
+    const auto eq = words[k].find('=');
+    const auto x = number(words[k].substr(eq + 1));
+    if (!x || (probe && *x <= 0))
+      refuse(path, comment.line, fmt::format("'# {} {}': write CHANNEL={}", words[0], words[k],
+                                             probe ? "RATIO, e.g. CH1=10 (positive)" : "VOLTS, e.g. CH1=0.05"));
+    (probe ? rec.probe : rec.offset)[canonical_channel(words[k].substr(0, eq))] = *x;
+  }
+}
+
+/// A plain CSV: '#' comment lines (among them probe ratios and offsets), a
+/// header row (time first, then the channels), an optional row of units (s,
+/// ms, us, ns; V, mV), then numbers. Without a header the channels are CH1, CH2, ... in order.
 ScopeRecording read_plain(const std::vector<Row>& all, const std::string& path) {
+  ScopeRecording rec{"csv", "time column", {}, {}, {}, {}};
   std::vector<Row> rows;
   for (const Row& r : all)
-    if (r.fields.front().rfind('#', 0) != 0) rows.push_back(r);
+    if (r.fields.front().rfind('#', 0) != 0)
+      rows.push_back(r);
+    else
+      read_channel_settings(r, path, rec);
   if (rows.empty()) refuse(path, 1, "no data");
-  ScopeRecording rec{"csv", "time column", {}, {}};
   std::size_t first = 0;
   std::vector<double> scales(rows[0].fields.size(), 1.0);
   if (!numeric(rows[0])) {

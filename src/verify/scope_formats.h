@@ -1,4 +1,5 @@
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,10 @@ struct ScopeRecording {
   std::string time_from;  ///< how the time axis was read: "time column" or "start + n * increment"
   std::vector<double> t;
   std::vector<ScopeColumn> columns;
+  /// A probe ratio and an offset the file records per channel (canonical
+  /// name): a plain CSV's "# probe CH1=10" and "# offset CH1=0.05" comments.
+  /// The scopes' exports hold volts with the probe setting applied and record neither.
+  std::map<std::string, double> probe, offset;
   const ScopeColumn* find(const std::string& channel) const;  ///< by canonical name, case-insensitive
 };
 
