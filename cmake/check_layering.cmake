@@ -2,7 +2,9 @@
 # includes" (a module is a folder of src/) has no cycle, and the modules below
 # the scene never reach scene/, not even through another module: the scene is
 # converted once, at the top (scene/scene_inputs.h); and only the command line
-# includes bench/ (a library of its own, outside gearpatch_core).
+# includes bench/ (a library of its own, outside gearpatch_core); and only
+# the command line prints: below cli/ text for the terminal goes through
+# common/notices.h or into an Error.
 # Run: cmake -DSOURCE_DIR=<repo> -P cmake/check_layering.cmake
 cmake_minimum_required(VERSION 3.20)
 set(BELOW_SCENE common machine model solver spice scaling circuit)
@@ -76,6 +78,18 @@ foreach(m ${MODULES})
     message(FATAL_ERROR "${m} includes bench/: only the command line may (bench is not in gearpatch_core)")
   endif()
 endforeach()
+# Only cli/ prints: no printf/puts family, fmt::print or standard stream below it.
+set(PRINTING "(^|[^A-Za-z0-9_])(f?printf|f?puts|putchar|fmt::print|std::print) *\\(|std::(cout|cerr|clog)([^A-Za-z0-9_]|$)")
+foreach(file ${FILES})
+  if(NOT file MATCHES "^cli/")
+    file(STRINGS ${SOURCE_DIR}/src/${file} printing REGEX "${PRINTING}")
+    foreach(line ${printing})
+      if(NOT line MATCHES "^ *//")
+        message(FATAL_ERROR "src/${file} prints: '${line}'; only cli/ prints (common/notices.h, or an Error)")
+      endif()
+    endforeach()
+  endif()
+endforeach()
 list(LENGTH MODULES count)
 message(STATUS "layering: ${count} modules, acyclic, none of ${BELOW_SCENE} reaches scene/, "
-               "only cli includes bench/")
+               "only cli includes bench/, only cli prints")

@@ -99,7 +99,7 @@ TEST_CASE("random scenes are reproducible: the same seed and index give the same
   }
 }
 
-TEST_CASE("random scenes lie in the issue's ranges and every feature class shows its feature", "[random]") {
+TEST_CASE("random scenes lie in the generator's ranges and every feature class shows its feature", "[random]") {
   std::map<SceneFeature, int> seen;
   for (const RandomScene& r : random_scenes(3, 210)) {
     INFO(r.text);

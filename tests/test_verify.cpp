@@ -97,9 +97,8 @@ TEST_CASE("at the hardware level a scene passes within tolerance or fails with a
     }
   }
   // the causes named are the ones measured on changed copies of the deck:
-  // bild6c's error is the X' stage's offset (not the φ̇s integrator's, which
-  // the old fixed rule blamed). bild5b, whose cause was δ on X' (halving it
-  // made it pass), passes since the contact comparators watch X.
+  // bild6c's error is the X' stage's offset, not the φ̇s integrator's. bild5b
+  // passes since its contact comparators watch X.
   o.autoscale = true;
   CHECK(verify::verify(testing::example_scene("bild5b"), o, *ngspice).passed);
   const auto named = [&](const std::string& scene) {
@@ -439,7 +438,7 @@ TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; s
   CHECK(r.comparison.worst_impact_shift == Approx(0.005).epsilon(0.01));
   double pointwise = 0;
   for (const auto& e : r.comparison.signals) pointwise = std::max(pointwise, e.pointwise_error);
-  CHECK(pointwise > 0.1);  // what the old pointwise comparison would have failed on
+  CHECK(pointwise > 0.1);  // a pointwise comparison would fail it
 
   spice::Vectors high = perfect;
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"})

@@ -277,62 +277,45 @@ SolverComparison compare_solvers(const std::vector<Point>& points) {
   return c;
 }
 
-BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
-  BenchResult r;
-  r.machine = o.machine;
-  r.command = o.command;
-  r.min_seconds = o.min_seconds;
-  r.repetitions = o.repetitions;
-  r.ngspice_repetitions = o.ngspice_repetitions;
-  r.tolerances = o.reference ? o.tolerances : std::vector<double>{};
-  r.knobs = o.knobs;
-  const std::size_t n = o.scene_files.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const Scene scene = load_scene(o.scene_files[i]);
-    const std::string where = fmt::format("scene {}/{} {}", i + 1, n, scene.name);
-    SceneResult s;
-    s.scene = scene.name;
-    s.file = o.scene_files[i];
-    if (o.reference) {
-      measure_reference(scene, o, where, s.points);
-      s.solvers = compare_solvers(s.points);
-    }
-    if (!o.knobs.empty()) {
-      // One unmeasured run first, so that the first knob does not pay for cold
-      // caches; then the knobs in turn, repetition after repetition, so that a
-      // slow spell of the machine falls on all of them alike.
-      if (o.progress) o.progress(where + ": ngspice warm-up");
-      Point warm_up = knob_point(o.knobs.front(), 0);
-      run_knob(scene, o.knobs.front(), o, simulator, warm_up);
-      const std::size_t first = s.points.size();
-      for (std::size_t k = 0; k < o.knobs.size(); ++k) s.points.push_back(knob_point(o.knobs[k], static_cast<int>(k)));
-      const int repetitions = std::max(1, o.ngspice_repetitions);
-      for (int rep = 0; rep < repetitions; ++rep)
-        for (std::size_t k = 0; k < o.knobs.size(); ++k) {
-          if (o.progress)
-            o.progress(fmt::format("{}: ngspice {} (run {}/{})", where, o.knobs[k].label, rep + 1, repetitions));
-          run_knob(scene, o.knobs[k], o, simulator, s.points[first + k]);
-        }
-      for (std::size_t k = 0; k < o.knobs.size(); ++k) {
-        Point& p = s.points[first + k];
-        if (!p.failure.empty()) continue;
-        p.seconds = median(p.samples);
-        p.wall_seconds = median(p.wall_samples);
-      }
-    }
-    r.scenes.push_back(std::move(s));
-  }
+namespace {
 
-  // Timing resolution: the typical relative half-range of a knob's total time
-  // over the repetitions. Errors within 1 % count as equal: moving the
-  // comparison grid alone (output grid 500 or 8000) changes them by about that.
-  std::vector<double> spreads;
+/// Measures every knob on one scene: a warm-up run, then the knobs in turn,
+/// repetition after repetition; each point's time is its samples' median.
+void measure_knobs(const Scene& scene, const BenchOptions& o, spice::Simulator& simulator, const std::string& where,
+                   std::vector<Point>& points) {
+  // One unmeasured run first, so that the first knob does not pay for cold
+  // caches; then the knobs in turn, repetition after repetition, so that a
+  // slow spell of the machine falls on all of them alike.
+  if (o.progress) o.progress(where + ": ngspice warm-up");
+  Point warm_up = knob_point(o.knobs.front(), 0);
+  run_knob(scene, o.knobs.front(), o, simulator, warm_up);
+  const std::size_t first = points.size();
+  for (std::size_t k = 0; k < o.knobs.size(); ++k) points.push_back(knob_point(o.knobs[k], static_cast<int>(k)));
+  const int repetitions = std::max(1, o.ngspice_repetitions);
+  for (int rep = 0; rep < repetitions; ++rep)
+    for (std::size_t k = 0; k < o.knobs.size(); ++k) {
+      if (o.progress)
+        o.progress(fmt::format("{}: ngspice {} (run {}/{})", where, o.knobs[k].label, rep + 1, repetitions));
+      run_knob(scene, o.knobs[k], o, simulator, points[first + k]);
+    }
+  for (std::size_t k = 0; k < o.knobs.size(); ++k) {
+    Point& p = points[first + k];
+    if (!p.failure.empty()) continue;
+    p.seconds = median(p.samples);
+    p.wall_seconds = median(p.wall_samples);
+  }
+}
+
+/// Per knob, its total time over the scenes for each repetition (empty when a
+/// scene lacks a sample); `spreads` receives each total's relative half-range.
+std::vector<std::vector<double>> knob_totals(const BenchOptions& o, const std::vector<SceneResult>& scenes,
+                                             std::vector<double>& spreads) {
   std::vector<std::vector<double>> totals(o.knobs.size());
   for (std::size_t k = 0; k < o.knobs.size(); ++k) {
     std::vector<double>& t = totals[k];
     t.assign(std::max(1, o.ngspice_repetitions), 0.0);
     bool complete = true;
-    for (const SceneResult& s : r.scenes)
+    for (const SceneResult& s : scenes)
       for (const Point& p : s.points)
         if (p.knob == static_cast<int>(k)) {
           complete = complete && p.samples.size() == t.size();
@@ -346,10 +329,13 @@ BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
     const double m = median(t);
     if (m > 0) spreads.push_back((*hi - *lo) / (2 * m));
   }
-  r.resolution.seconds = spreads.empty() ? 0 : median(spreads);
-  r.resolution.error = 0.01;
-  for (SceneResult& s : r.scenes) mark_front(s.points, r.resolution);
+  return totals;
+}
 
+/// Per knob, its worst and median error over the scenes and its total time,
+/// into r.aggregate; returns the (time, worst) and (time, median) points.
+std::pair<std::vector<TradePoint>, std::vector<TradePoint>> aggregate(
+    const BenchOptions& o, const std::vector<std::vector<double>>& totals, BenchResult& r) {
   std::vector<TradePoint> worst, middle;
   for (std::size_t k = 0; k < o.knobs.size(); ++k) {
     AggregatePoint a;
@@ -376,6 +362,45 @@ BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
     middle.push_back({a.total_seconds, a.median_error});
     r.aggregate.push_back(a);
   }
+  return {worst, middle};
+}
+
+}  // namespace
+
+BenchResult run_bench(const BenchOptions& o, spice::Simulator& simulator) {
+  BenchResult r;
+  r.machine = o.machine;
+  r.command = o.command;
+  r.min_seconds = o.min_seconds;
+  r.repetitions = o.repetitions;
+  r.ngspice_repetitions = o.ngspice_repetitions;
+  r.tolerances = o.reference ? o.tolerances : std::vector<double>{};
+  r.knobs = o.knobs;
+  const std::size_t n = o.scene_files.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Scene scene = load_scene(o.scene_files[i]);
+    const std::string where = fmt::format("scene {}/{} {}", i + 1, n, scene.name);
+    SceneResult s;
+    s.scene = scene.name;
+    s.file = o.scene_files[i];
+    if (o.reference) {
+      measure_reference(scene, o, where, s.points);
+      s.solvers = compare_solvers(s.points);
+    }
+    if (!o.knobs.empty()) measure_knobs(scene, o, simulator, where, s.points);
+    r.scenes.push_back(std::move(s));
+  }
+
+  // Timing resolution: the typical relative half-range of a knob's total time
+  // over the repetitions. Errors within 1 % count as equal: moving the
+  // comparison grid alone (output grid 500 or 8000) changes them by about that.
+  std::vector<double> spreads;
+  const std::vector<std::vector<double>> totals = knob_totals(o, r.scenes, spreads);
+  r.resolution.seconds = spreads.empty() ? 0 : median(spreads);
+  r.resolution.error = 0.01;
+  for (SceneResult& s : r.scenes) mark_front(s.points, r.resolution);
+
+  const auto [worst, middle] = aggregate(o, totals, r);
   const auto front = pareto_front(worst, r.resolution), median_front = pareto_front(middle, r.resolution);
   for (std::size_t k = 0; k < r.aggregate.size(); ++k) {
     r.aggregate[k].pareto = front[k];

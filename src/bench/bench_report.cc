@@ -99,20 +99,11 @@ std::string to_table(const BenchResult& r) {
   return out;
 }
 
-std::string to_json(const BenchResult& r) {
-  json j;
-  j["machine"] = {{"nproc", r.machine.nproc},
-                  {"cpu_model", r.machine.cpu_model},
-                  {"memory_bytes", r.machine.memory_bytes},
-                  {"memory_gib", std::round(r.machine.memory_bytes / 1073741824.0 * 10) / 10},
-                  {"ngspice_version", r.machine.ngspice_version},
-                  {"date", r.machine.date},
-                  {"compiler", r.machine.compiler},
-                  {"optimized", r.machine.optimized},
-                  {"os", r.machine.os},
-                  {"revision", r.machine.revision}};
-  j["command"] = r.command;
-  j["method"] = {
+namespace {
+
+/// How the bench measures: its error and time, repetitions and resolution.
+json method_json(const BenchResult& r) {
+  json method = {
       {"error", "fraction of full scale (1 MU of each signal, as verify). ngspice: max over signals of "
                 "verify's max error and the worst impact-time shift (fraction of the run). Adaptive "
                 "solver: max over signals of |adaptive - exact| on the scene's output grid. Exact: an "
@@ -127,55 +118,77 @@ std::string to_json(const BenchResult& r) {
       {"min_seconds", r.min_seconds},
       {"repetitions", r.repetitions},
       {"ngspice_repetitions", r.ngspice_repetitions}};
-  j["method"]["resolution"] = {
+  method["resolution"] = {
       {"seconds", r.resolution.seconds},
       {"error", r.resolution.error},
       {"meaning", "the Pareto fronts count values within these relative differences as equal: times within "
                   "the typical relative half-range of a knob's total time over the repetitions, errors within "
                   "1 %"}};
+  return method;
+}
+
+/// One scene's points and, if measured, exact against adaptive.
+json scene_json(const SceneResult& s) {
+  json scene{{"scene", s.scene}, {"file", s.file}, {"points", json::array()}};
+  for (const Point& p : s.points) {
+    json point{{"family", p.family}, {"label", p.label}, {"error", number(p.error)},
+               {"seconds", number(p.seconds)}};
+    if (p.ngspice) {
+      point["wall_seconds"] = number(p.wall_seconds);
+      point["samples"] = p.samples;
+      point["knob"] = p.knob;
+      point["passed"] = p.passed;
+      point["failures"] = p.failures;
+      point["pareto"] = p.pareto;
+    } else {
+      point["error_is_estimate"] = p.error_is_estimate;
+      if (p.family == "adaptive") point["tolerance"] = p.tolerance;
+    }
+    if (!p.failure.empty()) point["failure"] = p.failure;
+    scene["points"].push_back(point);
+  }
+  if (s.solvers) {
+    const SolverComparison& c = *s.solvers;
+    json ratios = json::array();
+    for (const SolverRatio& x : c.ratios)
+      ratios.push_back({{"tolerance", x.tolerance}, {"error", number(x.error)}, {"seconds", number(x.seconds)},
+                        {"speedup", number(x.speedup)}});
+    scene["exact_vs_adaptive"] = {{"exact_seconds", number(c.exact_seconds)},
+                                  {"exact_error_estimate", number(c.exact_error)},
+                                  {"per_tolerance", ratios},
+                                  {"at_least_100x", c.at_least_100x}};
+    if (c.matched)
+      scene["exact_vs_adaptive"]["matched"] = {{"tolerance", c.matched->tolerance},
+                                               {"error", number(c.matched->error)},
+                                               {"seconds", number(c.matched->seconds)},
+                                               {"speedup", number(c.matched->speedup)}};
+  }
+  return scene;
+}
+
+}  // namespace
+
+std::string to_json(const BenchResult& r) {
+  json j;
+  j["machine"] = {{"nproc", r.machine.nproc},
+                  {"cpu_model", r.machine.cpu_model},
+                  {"memory_bytes", r.machine.memory_bytes},
+                  {"memory_gib", std::round(r.machine.memory_bytes / 1073741824.0 * 10) / 10},
+                  {"ngspice_version", r.machine.ngspice_version},
+                  {"date", r.machine.date},
+                  {"compiler", r.machine.compiler},
+                  {"optimized", r.machine.optimized},
+                  {"os", r.machine.os},
+                  {"revision", r.machine.revision}};
+  j["command"] = r.command;
+  j["method"] = method_json(r);
   j["tolerances"] = r.tolerances;
   j["knobs"] = json::array();
   for (const Knob& k : r.knobs)
     j["knobs"].push_back({{"family", k.family}, {"label", k.label}, {"level", std::string(level_name(k.level))},
                           {"transient", control_json(k.control)}, {"presets", k.presets}});
   j["scenes"] = json::array();
-  for (const SceneResult& s : r.scenes) {
-    json scene{{"scene", s.scene}, {"file", s.file}, {"points", json::array()}};
-    for (const Point& p : s.points) {
-      json point{{"family", p.family}, {"label", p.label}, {"error", number(p.error)},
-                 {"seconds", number(p.seconds)}};
-      if (p.ngspice) {
-        point["wall_seconds"] = number(p.wall_seconds);
-        point["samples"] = p.samples;
-        point["knob"] = p.knob;
-        point["passed"] = p.passed;
-        point["failures"] = p.failures;
-        point["pareto"] = p.pareto;
-      } else {
-        point["error_is_estimate"] = p.error_is_estimate;
-        if (p.family == "adaptive") point["tolerance"] = p.tolerance;
-      }
-      if (!p.failure.empty()) point["failure"] = p.failure;
-      scene["points"].push_back(point);
-    }
-    if (s.solvers) {
-      const SolverComparison& c = *s.solvers;
-      json ratios = json::array();
-      for (const SolverRatio& x : c.ratios)
-        ratios.push_back({{"tolerance", x.tolerance}, {"error", number(x.error)}, {"seconds", number(x.seconds)},
-                          {"speedup", number(x.speedup)}});
-      scene["exact_vs_adaptive"] = {{"exact_seconds", number(c.exact_seconds)},
-                                    {"exact_error_estimate", number(c.exact_error)},
-                                    {"per_tolerance", ratios},
-                                    {"at_least_100x", c.at_least_100x}};
-      if (c.matched)
-        scene["exact_vs_adaptive"]["matched"] = {{"tolerance", c.matched->tolerance},
-                                                 {"error", number(c.matched->error)},
-                                                 {"seconds", number(c.matched->seconds)},
-                                                 {"speedup", number(c.matched->speedup)}};
-    }
-    j["scenes"].push_back(scene);
-  }
+  for (const SceneResult& s : r.scenes) j["scenes"].push_back(scene_json(s));
   j["aggregate"] = json::array();
   for (const AggregatePoint& a : r.aggregate)
     j["aggregate"].push_back({{"knob", a.knob}, {"label", r.knobs[a.knob].label},

@@ -94,11 +94,10 @@ struct Circuit {
 /// The comparator offsets δ1, δ2 for a level, in machine units. The paper sets
 /// them "by experiment" just above the zero errors and noise of the machine:
 /// the ideal circuit has none, so only the comparator's own smoothing counts
-/// (1e-5 MU; 1e-4 MU finished random-2-085's --autoscale deck, which aborts
-/// in the damping switch, but failed scenes/extremes/restitution-tiny by 2 %
-/// on Δφ). On hardware δ must clear the Schmitt trigger's hysteresis of
-/// ±1e-3 MU plus the op-amps' 1 mV offsets, or a comparator watching |Δφ'|
-/// never switches back: 5e-3 MU (50 mV).
+/// (1e-5 MU: a wider offset blurs the smallest restitutions' Δφ). On hardware
+/// δ must clear the Schmitt trigger's hysteresis of ±1e-3 MU plus the
+/// op-amps' 1 mV offsets, or a comparator watching |Δφ'| never switches
+/// back: 5e-3 MU (50 mV).
 double comparator_offset(Level level);
 
 /// Width of the linear band of the friction characteristic sign(φ̇) (blocks
@@ -106,19 +105,15 @@ double comparator_offset(Level level);
 /// which is how the circuit holds a shaft at rest. The ideal level makes it
 /// as narrow as ngspice integrates robustly (1e-5 MU); a diode limiter on a
 /// real op-amp reaches a gain of about 1000 (1e-3 MU). The self-locking
-/// characteristic (block 16) is as steep at the ideal level (section 6 asks
-/// for two orders steeper, but 1e-7 MU made ngspice abort a self-locking deck
-/// with "timestep too small" even under gear, and 1e-6 MU aborted
-/// random-2-080's --autoscale deck at β = 16855 in its ratchet; 1e-5 MU
-/// finishes both, and its dial, the strongest weight, keeps it steeper in
-/// effect). On hardware block 16 closes a loop through the secondary's
-/// integrator (rate k0·α_lock·n, 1/s, per MU of the limiter's output): its
-/// band is as narrow as that loop allows with 60° of phase margin against the
-/// limiter's own closed-loop bandwidth GBW/(1 + 1/band), and never narrower
-/// than block 14's. A gain of 1e4 behind a 3 MHz op-amp oscillated at about
-/// 2 kHz; on the classic machine (GBW 100 kHz, rate 10/s) the gain of 1000
-/// made random-1-031 run away (ngspice past 120 s, 0.5 GB of rawfile in 20 s):
-/// the rule gives 190 (band 5.3e-3 MU), which finishes in 2.5 s.
+/// characteristic (block 16) is as steep at the ideal level: section 6 asks
+/// for two orders steeper, but a narrower band makes ngspice abort
+/// self-locking decks with "timestep too small", and its dial, the strongest
+/// weight, keeps it steeper in effect. On hardware block 16 closes a loop
+/// through the secondary's integrator (rate k0·α_lock·n, 1/s, per MU of the
+/// limiter's output): its band is as narrow as that loop allows with 60° of
+/// phase margin against the limiter's own closed-loop bandwidth
+/// GBW/(1 + 1/band), and never narrower than block 14's; a steeper band
+/// oscillates.
 double friction_band(Level level);
 double lock_band(Level level, double gbw_hz, double loop_rate);
 

@@ -50,11 +50,59 @@ std::string presets_text() {
   return text;
 }
 
+/// The bench's options from the command line (Error for a bad one), before
+/// any output target is checked.
+bench::BenchOptions bench_options(const po::variables_map& vm) {
+  const std::vector<std::string> families = {"reference", "max-step", "reltol", "method", "grid",
+                                             "preset",    "level"};
+  bench::BenchOptions o;
+  o.scene_files = vm.count("scene") ? vm["scene"].as<std::vector<std::string>>() : example_scene_files();
+  if (o.scene_files.empty()) throw Error("no SCENE given and no scenes/*.ini here (see --help)");
+  if (vm.count("only")) {
+    const auto chosen = split_list(vm["only"].as<std::string>());
+    for (const std::string& f : chosen)
+      if (std::find(families.begin(), families.end(), f) == families.end())
+        throw Error(fmt::format("--only {}: not a family (reference, max-step, reltol, method, grid, preset, "
+                                "level)", f));
+    o.reference = std::find(chosen.begin(), chosen.end(), "reference") != chosen.end();
+    o.knobs = bench::select_knobs(o.knobs, chosen);
+  }
+  o.min_seconds = vm["min-time"].as<double>();
+  if (!(o.min_seconds >= 0)) throw Error("--min-time must be >= 0");
+  o.repetitions = vm["repeat"].as<int>();
+  o.ngspice_repetitions = vm["ngspice-repeat"].as<int>();
+  if (o.repetitions < 1 || o.ngspice_repetitions < 1) throw Error("--repeat and --ngspice-repeat must be >= 1");
+  o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
+  return o;
+}
+
+/// Stages and commits the bench's outputs; the table goes to stderr when it
+/// has no target of its own, and a plot that cannot be drawn is a warning.
+void write_outputs(const bench::BenchResult& result, const po::variables_map& vm, OutputSet& outputs,
+                   const std::string& table_to, const std::string& plot_as) {
+  const std::string table = bench::to_table(result);
+  std::string plot_warning;
+  if (outputs.has("--out")) outputs.stage("--out", table);
+  if (outputs.has("--json")) outputs.stage("--json", bench::to_json(result));
+  if (outputs.has("--plot")) {
+    try {  // the measurements stand without their picture
+      outputs.stage("--plot", bench::plot_image(result, plot_as));
+    } catch (const Error& e) {
+      plot_warning = e.what();
+    }
+  }
+  if (outputs.has("--markdown"))
+    outputs.stage("--markdown", bench::to_markdown(result, vm.count("plot") && plot_warning.empty() ? vm["plot"].as<std::string>() : ""));
+  outputs.commit();
+  if (table_to.empty()) std::fputs(table.c_str(), stderr);
+  if (!plot_warning.empty())
+    std::fprintf(stderr, "gearpatch bench: warning: --plot %s: not written: %s\n", vm["plot"].as<std::string>().c_str(),
+                 plot_warning.c_str());
+}
+
 }  // namespace
 
 int run_bench(const std::vector<std::string>& args) {
-  const std::vector<std::string> families = {"reference", "max-step", "reltol", "method", "grid",
-                                             "preset",    "level"};
   po::options_description options("bench options");
   options.add_options()
       ("plot", po::value<std::string>(), "write the work-precision plot (error against time, log-log, "
@@ -92,24 +140,7 @@ int run_bench(const std::vector<std::string>& args) {
            "gearpatch bench scenes/bild5b.ini --only level --markdown bench.md --plot work-precision.svg"},
           vm, false))
     return 0;
-  bench::BenchOptions o;
-  o.scene_files = vm.count("scene") ? vm["scene"].as<std::vector<std::string>>() : example_scene_files();
-  if (o.scene_files.empty()) throw Error("no SCENE given and no scenes/*.ini here (see --help)");
-  if (vm.count("only")) {
-    const auto chosen = split_list(vm["only"].as<std::string>());
-    for (const std::string& f : chosen)
-      if (std::find(families.begin(), families.end(), f) == families.end())
-        throw Error(fmt::format("--only {}: not a family (reference, max-step, reltol, method, grid, preset, "
-                                "level)", f));
-    o.reference = std::find(chosen.begin(), chosen.end(), "reference") != chosen.end();
-    o.knobs = bench::select_knobs(o.knobs, chosen);
-  }
-  o.min_seconds = vm["min-time"].as<double>();
-  if (!(o.min_seconds >= 0)) throw Error("--min-time must be >= 0");
-  o.repetitions = vm["repeat"].as<int>();
-  o.ngspice_repetitions = vm["ngspice-repeat"].as<int>();
-  if (o.repetitions < 1 || o.ngspice_repetitions < 1) throw Error("--repeat and --ngspice-repeat must be >= 1");
-  o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
+  bench::BenchOptions o = bench_options(vm);
   OutputSet outputs;  // every target checked now, before the run
   const std::string table_to = main_output(vm, {"json", "plot", "markdown"});
   if (!table_to.empty()) outputs.add("--out", table_to);
@@ -123,24 +154,7 @@ int run_bench(const std::vector<std::string>& args) {
 
   auto simulator = spice::make_batch_ngspice();
   const bench::BenchResult result = bench::run_bench(o, *simulator);
-  const std::string table = bench::to_table(result);
-  std::string plot_warning;
-  if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", bench::to_json(result));
-  if (outputs.has("--plot")) {
-    try {  // the measurements stand without their picture
-      outputs.stage("--plot", bench::plot_image(result, plot_as));
-    } catch (const Error& e) {
-      plot_warning = e.what();
-    }
-  }
-  if (outputs.has("--markdown"))
-    outputs.stage("--markdown", bench::to_markdown(result, vm.count("plot") && plot_warning.empty() ? vm["plot"].as<std::string>() : ""));
-  outputs.commit();
-  if (table_to.empty()) std::fputs(table.c_str(), stderr);
-  if (!plot_warning.empty())
-    std::fprintf(stderr, "gearpatch bench: warning: --plot %s: not written: %s\n", vm["plot"].as<std::string>().c_str(),
-                 plot_warning.c_str());
+  write_outputs(result, vm, outputs, table_to, plot_as);
   return 0;
 }
 

@@ -4,10 +4,12 @@
 #include <exception>
 #include <fmt/format.h>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/command.h"
 #include "common/error.h"
+#include "common/notices.h"
 #include "scene/scene.h"
 
 namespace {
@@ -45,6 +47,7 @@ void print_scene_keys() {
 
 int main(int argc, char** argv) {
   std::setlocale(LC_ALL, "C");
+  gearpatch::set_notice_sink([](std::string_view text) { std::fwrite(text.data(), 1, text.size(), stderr); });
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     print_usage();

@@ -11,6 +11,7 @@
 #include "common/numbers.h"
 #include "common/process.h"
 #include "common/scratch_dir.h"
+#include "common/tool_run.h"
 #include "patching/signal_names.h"
 
 namespace gearpatch::patching {
@@ -83,38 +84,19 @@ std::string to_dot(const Wiring& w) {
 }
 
 std::string picture_format(const std::string& path, const std::string& option) {
-  const std::string ext = fs::path(path).extension().string();
-  if (ext != ".png" && ext != ".svg") throw Error(option + " " + path + ": give a .png or .svg file");
-  if (!find_executable("dot"))
-    throw Error(fmt::format("{} {}: Graphviz's dot was not found; install it, e.g. '{}'", option, path, kInstallHint));
-  return ext.substr(1);
+  return tool_image_format(path, option, "dot", "Graphviz's dot", kInstallHint);
 }
 
 std::string draw_with_dot(const std::string& dot, const std::string& format) {
   if (format != "png" && format != "svg") throw Error("dot draws png or svg here, not '" + format + "'");
-  ScratchDir dir("gearpatch-dot");
-  write_file_atomically((dir / "patch.dot").string(), dot);
-  const std::string image = "patch." + format;
-  ChildSpec spec;
-  spec.name = "dot";
-  spec.program = "dot";
-  spec.install_hint = kInstallHint;
-  spec.args = {"-T" + format, "-o", image, "patch.dot"};
-  spec.directory = dir.path();
-  spec.stdout_file = dir / "dot.out";
-  spec.stderr_file = dir / "dot.log";
-  spec.counted_files = {dir / image};
-  spec.timeout = std::chrono::minutes(1);
-  spec.max_output_bytes = std::uintmax_t{64} << 20;
-  spec.failure_kind = Error::Kind::input;
-  const ChildExit exit = run_child(spec);
-  if (exit.exit_code != 0 || !fs::exists(dir / image)) {
-    std::string log = read_file(spec.stderr_file);
-    while (!log.empty() && (log.back() == '\n' || log.back() == ' ')) log.pop_back();
-    throw Error(fmt::format("--picture: dot failed (exit status {}): {}", exit.exit_code,
-                            log.empty() ? "no message" : log));
-  }
-  return read_file((dir / image).string());
+  ToolRun run;
+  run.program = "dot";
+  run.install_hint = kInstallHint;
+  run.option = "--picture";
+  run.output = "patch." + format;
+  run.args = {"-T" + format, "-o", run.output, "patch.dot"};
+  run.inputs = {{"patch.dot", dot}};
+  return run_tool(run);
 }
 
 }  // namespace gearpatch::patching

@@ -2,7 +2,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstdio>
 #include <fmt/format.h>
 #include <mutex>
 #include <sched.h>
@@ -10,6 +9,7 @@
 
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/notices.h"
 #include "common/process.h"
 #include "runs/run_files.h"
 
@@ -46,8 +46,8 @@ PoolReport run_pool(std::size_t count, unsigned workers, const std::function<std
     const std::string eta = finished == 0 || finished == count
                                 ? std::string()
                                 : fmt::format(", ETA {:.1f} s", elapsed / finished * (count - finished));
-    fmt::print(stderr, "{}: {}/{} done, {} failed, {:.1f} s{}\n", name, finished, count, report.failures.size(),
-               elapsed, eta);
+    notice(fmt::format("{}: {}/{} done, {} failed, {:.1f} s{}\n", name, finished, count, report.failures.size(),
+                       elapsed, eta));
   };
   const auto worker = [&] {
     for (std::size_t i = next++; i < count; i = next++) {

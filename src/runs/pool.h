@@ -18,7 +18,7 @@ struct PoolReport {
 
 /// Runs tasks 0 … count−1 on `workers` threads, each taking the next index;
 /// a task returns "" when it succeeded, else why it failed. Progress and an
-/// ETA go to stderr as "<name>: 12/50 done, 1 failed, 3.1 s, ETA 9.8 s",
+/// ETA are notices (common/notices.h), "<name>: 12/50 done, 1 failed, 3.1 s, ETA 9.8 s",
 /// at most about once a second and once at the end (none when `name` is
 /// empty: the caller reports). An exception from a task
 /// counts as its failure; an interrupt (common/interrupt.h) ends the program.

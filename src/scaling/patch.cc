@@ -129,7 +129,8 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
   return pot;
 }
 
-Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std::vector<std::string>& notes) {
+Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std::vector<std::string>& notes,
+                  std::set<Maximum>* simulated) {
   Maxima m = a;
   const double f = 1 + headroom;
   const std::string how = fmt::format("autoscaled: simulated peak × {:g}", f);
@@ -137,6 +138,7 @@ Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std:
     if (peak > 0) {
       m.at(key) = peak * f;
       m.basis[key] = how;
+      if (simulated) simulated->insert(key);
     } else {
       notes.push_back(fmt::format("autoscale: {} stays 0 in the run; kept the a-priori maximum",
                                   to_string(key)));

@@ -57,8 +57,8 @@ struct PatchOptions {
   double comparator_offset = 5e-3;
   /// With autoscale on a self-locking scene, pose the lock's catch
   /// (scaling_problem.h): for the ideal level, where a larger β costs
-  /// nothing. On hardware the offsets drift over the longer machine run:
-  /// bild6c --autoscale at β 33 -> 279 went from 13 % to 16.6 % worst.
+  /// nothing. On hardware the offsets drift over the longer machine run
+  /// that a larger β asks for, which costs more than the catch gains.
   bool lock_catch = false;
 };
 
@@ -73,7 +73,7 @@ struct Patch {
   double drive_torque = 0;  ///< M_a, its sign for the drive source
   double load_torque = 0;   ///< its sign picks the reference alpha_load takes
   DriveProfile drive_profile;  ///< M_a(t) for a PWL drive source; empty: DC
-  bool capped_contact = false;  ///< the capped law, which the circuit does not realise yet
+  bool capped_contact = false;  ///< the capped law (ElastoBacklash), from half-wave diodes
   double stribeck_speed = 0;    ///< φ̇_S of Stribeck bearings, rad/s; 0: Coulomb
   double duration = 1;      ///< s of real time
   MachineProfile machine;

@@ -1,5 +1,6 @@
 #pragma once
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -17,8 +18,10 @@ Potentiometer split(const Coefficient& c, double beta, const MachineProfile& mac
                     double half_backlash);
 
 /// The maxima from the simulated peaks: each becomes its peak·(1 + headroom);
-/// a signal that stayed at zero keeps its a-priori maximum.
-Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std::vector<std::string>& notes);
+/// a signal that stayed at zero keeps its a-priori maximum. `simulated`, if
+/// given, receives the keys set from a peak.
+Maxima autoscaled(const Maxima& a, const PhysicalPeaks& x, double headroom, std::vector<std::string>& notes,
+                  std::set<Maximum>* simulated = nullptr);
 
 /// A warning for each simulated peak beyond its scale, with the fix.
 void overload_warnings(const std::map<std::string, double>& peaks, Maxima m, Patch& patch);

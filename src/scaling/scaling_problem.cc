@@ -132,6 +132,8 @@ struct RowMeaning {
   double beta = 0;
   int option = 0;  ///< the choice column the row holds under (0: always)
   std::optional<Setting> setting = std::nullopt;  ///< the coefficient it limits, if any
+  bool at_largest = false;  ///< a coefficient at α = 1: holds its scales down
+  bool stage = false;       ///< the stages in front of a coefficient: hold their source's scale up
 };
 
 struct Option {
@@ -157,7 +159,8 @@ class Model {
   int beta() const { return b_; }
   const std::vector<std::vector<Option>>& options() const { return options_; }
   const std::vector<RowMeaning>& meanings() const { return meanings_; }
-  const std::map<std::string, int>& slacks() const { return slacks_; }
+  /// The slack column of each group, by its name.
+  const std::map<std::string, std::pair<ConstraintGroup, int>>& slacks() const { return slacks_; }
 
   /// Σ stages over the choices, and Σ log α.
   Terms stage_terms() const {
@@ -176,7 +179,7 @@ class Model {
   }
   Terms slack_terms() const {
     Terms t;
-    for (const auto& [group, column] : slacks_) t.emplace_back(column, 1.0);
+    for (const auto& [name, slack] : slacks_) t.emplace_back(slack.second, 1.0);
     return t;
   }
 
@@ -185,16 +188,16 @@ class Model {
     for (const auto& [key, e] : scales) t.emplace_back(u_.at(key), e);
     if (beta != 0) t.emplace_back(b_, beta);
   }
-  double relaxed(const std::string& group) const {
-    auto it = relax_.find(group);
+  double relaxed(const ConstraintGroup& group) const {
+    auto it = relax_.find(group.name());
     return it == relax_.end() ? 0.0 : it->second;
   }
   /// The slack column of a group (elastic only), with coefficient `sign` in `t`.
-  void slack(Terms& t, const std::string& group, double sign) {
+  void slack(Terms& t, const ConstraintGroup& group, double sign) {
     if (!elastic_) return;
-    auto [it, made] = slacks_.emplace(group, 0);
-    if (made) it->second = lp_.add_column("slack " + group, 0, 200);
-    t.emplace_back(it->second, sign);
+    auto [it, made] = slacks_.emplace(group.name(), std::pair(group, 0));
+    if (made) it->second.second = lp_.add_column("slack " + group.name(), 0, 200);
+    t.emplace_back(it->second.second, sign);
   }
 
   void add_scales() {
@@ -204,16 +207,18 @@ class Model {
       const double lo = std::log(bound) - top;  // log(bound·(1 + headroom))
       u_[key] = lp_.add_column("log scale " + to_string(key), lo - span, lo + span);
       Terms row{{u_[key], 1}};
-      slack(row, "peak." + to_string(key), 1);
-      const int i = lp_.add_row("peak " + to_string(key), row, lo - relaxed("peak." + to_string(key)),
+      const ConstraintGroup peak{ConstraintGroup::Kind::peak, key, std::nullopt};
+      slack(row, peak, 1);
+      const int i = lp_.add_row("peak " + to_string(key), row, lo - relaxed(peak),
                                 LinearProgram::infinity);
       meanings_.push_back({i, fmt::format("the peak bound of {} ({:.4g}) at {:.3g} of the unit",
                                           to_string(key), bound, std::exp(top)),
                            {{key, 1}}, 0, 0});
       Terms floor{{u_[key], 1}};
-      slack(floor, "floor." + to_string(key), -1);
+      const ConstraintGroup lowest{ConstraintGroup::Kind::floor, key, std::nullopt};
+      slack(floor, lowest, -1);
       const int f = lp_.add_row("floor " + to_string(key), floor, -LinearProgram::infinity,
-                                std::log(bound / pr_.lowest_level) + relaxed("floor." + to_string(key)));
+                                std::log(bound / pr_.lowest_level) + relaxed(lowest));
       meanings_.push_back({f, fmt::format("the lowest useful level of {} ({:g} MU)", to_string(key),
                                           pr_.lowest_level), {{key, 1}}, 0, 0});
       const int l = lp_.add_row("level " + to_string(key), {{t_, 1}, {u_[key], 1}}, -LinearProgram::infinity,
@@ -229,29 +234,30 @@ class Model {
       return;
     }
     b_ = lp_.add_column("log beta", std::log(1e-9), std::log(1e9));
-    auto floor = [&](double least, const std::string& group, const std::string& sentence) {
+    auto floor = [&](double least, ConstraintGroup::Kind kind, const std::string& sentence) {
       if (!(least > 0)) return;
+      const ConstraintGroup group{kind, std::nullopt, std::nullopt};
       Terms row{{b_, 1}};
       slack(row, group, 1);
-      const int i = lp_.add_row(group, row, std::log(least) - relaxed(group), LinearProgram::infinity);
+      const int i = lp_.add_row(group.name(), row, std::log(least) - relaxed(group), LinearProgram::infinity);
       meanings_.push_back({i, sentence, {}, 1, 0});
     };
     // Both limits on the contact oscillation are floors on β: only the stricter is a row.
     const bool amplifiers = pr_.beta_for_bandwidth > pr_.beta_for_oscillation;
-    floor(amplifiers ? 0 : pr_.beta_for_oscillation, "beta.oscillation",
+    floor(amplifiers ? 0 : pr_.beta_for_oscillation, ConstraintGroup::Kind::beta_oscillation,
           fmt::format("the contact oscillation at {:g}·k0 rad/s of machine time, the fastest the machine "
                       "follows", max_machine_frequency_per_k0));
-    floor(amplifiers ? pr_.beta_for_bandwidth : 0, "beta.bandwidth",
+    floor(amplifiers ? pr_.beta_for_bandwidth : 0, ConstraintGroup::Kind::beta_bandwidth,
           fmt::format("the contact oscillation within the amplifiers' bandwidth and slew ({:.4g} rad/s of "
                       "machine time)", pr_.amplifier_frequency));
-    floor(pr_.beta_for_lock, "beta.lock",
+    floor(pr_.beta_for_lock, ConstraintGroup::Kind::beta_lock,
           fmt::format("the self-locking reaction catching the load within {:g} % of the run",
                       100 * lock_catch_fraction));
     if (pr_.lock_catch_torque > 0) {  // β·φ̇sm·M0m >= c·v²/(2·n_max·k0·share)
-      const std::string group = "lock.catch";
+      const ConstraintGroup group{ConstraintGroup::Kind::lock_catch, std::nullopt, std::nullopt};
       Terms row{{b_, 1}, {u_.at(Maximum::speed_secondary), 1}, {u_.at(Maximum::torque), 1}};
       slack(row, group, 1);
-      const int i = lp_.add_row(group, row, std::log(pr_.lock_catch_torque) - relaxed(group), LinearProgram::infinity);
+      const int i = lp_.add_row(group.name(), row, std::log(pr_.lock_catch_torque) - relaxed(group), LinearProgram::infinity);
       meanings_.push_back({i, fmt::format("the self-locking catch: the strongest lock reaction stops the secondary "
                                           "within {:g} % of M0m as spring torque", 100 * lock_catch_error),
                            {{Maximum::speed_secondary, 1}, {Maximum::torque, 1}}, 1, 0});
@@ -277,16 +283,18 @@ class Model {
         append(hi, c.value.scales, c.value.beta);
         lo = hi;
         hi.emplace_back(o.column, big);
-        slack(hi, name + ".high", -1);
+        const ConstraintGroup high{ConstraintGroup::Kind::setting_high, std::nullopt, c.name};
+        const ConstraintGroup low{ConstraintGroup::Kind::setting_low, std::nullopt, c.name};
+        slack(hi, high, -1);
         const int h = lp_.add_row(name + " high", hi, -LinearProgram::infinity,
-                                  std::log(o.gain) - c.value.constant + big + relaxed(name + ".high"));
+                                  std::log(o.gain) - c.value.constant + big + relaxed(high));
         meanings_.push_back({h, fmt::format("{} at its largest, α = 1 {}", name, how), c.value.scales,
-                             c.value.beta, o.column, c.name});
+                             c.value.beta, o.column, c.name, true, false});
         lo.emplace_back(o.column, -big);
-        slack(lo, name + ".low", 1);
+        slack(lo, low, 1);
         const int l = lp_.add_row(name + " low", lo,
                                   std::log(pr_.smallest_setting * o.gain) - c.value.constant - big -
-                                      relaxed(name + ".low"),
+                                      relaxed(low),
                                   LinearProgram::infinity);
         meanings_.push_back({l, fmt::format("{} at its smallest, α = {:g} {}", name, pr_.smallest_setting, how),
                              c.value.scales, c.value.beta, o.column, c.name});
@@ -296,7 +304,7 @@ class Model {
                                     -LinearProgram::infinity,
                                     -std::log1p(pr_.headroom) - k * std::log(amplify) - bound + big);
           meanings_.push_back({s, fmt::format("the stages in front of {} at the unit", name),
-                               {{c.source->scale, 1}}, 0, o.column, c.name});
+                               {{c.source->scale, 1}}, 0, o.column, c.name, false, true});
         }
         opts.push_back(o);
       }
@@ -337,7 +345,7 @@ class Model {
   std::map<Maximum, int> u_;
   std::vector<std::vector<Option>> options_;  // per coefficient
   std::vector<RowMeaning> meanings_;
-  std::map<std::string, int> slacks_;
+  std::map<std::string, std::pair<ConstraintGroup, int>> slacks_;
 };
 
 Terms negated_scales(const Model& m) {
@@ -439,30 +447,31 @@ std::string coefficient_key(Setting s) {
   }
 }
 
-Conflict describe(const ScalingProblem& pr, const std::string& group, double factor) {
-  Conflict c{group, factor, "", ""};
+Conflict describe(const ScalingProblem& pr, const ConstraintGroup& group, double factor) {
+  using Kind = ConstraintGroup::Kind;
+  Conflict c{group.name(), group, factor, "", ""};
   const std::string f = fmt::format("{:.4g}", factor);
-  if (group.rfind("peak.", 0) == 0) {
-    const std::string key = group.substr(5);
+  if (group.kind == Kind::peak) {
+    const std::string key = to_string(*group.signal);
     c.scene_key = "maxima." + key;
-    const double bound = pr.bounds.at(*parse_maximum(key));
+    const double bound = pr.bounds.at(*group.signal);
     c.sentence = fmt::format(
         "{} peaks at up to {:.4g} and must stay within 1/(1 + headroom) of the machine unit: it would have to "
         "run {}× over (a machine unit {}× larger, or a scene in which {} peaks {}× lower)",
         key, bound, f, f, key, f);
-  } else if (group.rfind("floor.", 0) == 0) {
-    const std::string key = group.substr(6);
+  } else if (group.kind == Kind::floor) {
+    const std::string key = to_string(*group.signal);
     c.scene_key = "maxima." + key;
     c.sentence = fmt::format(
         "{} must stay above {:g} MU of the machine unit (below it offsets and noise swamp it), but would have to "
         "sink {}× lower (a machine whose lowest useful level is {}× lower would do)", key, pr.lowest_level, f, f);
-  } else if (group == "beta.oscillation") {
+  } else if (group.kind == Kind::beta_oscillation) {
     c.scene_key = "gear.stiffness";
     c.sentence = fmt::format(
         "the contact oscillation must stay within {:g}·k0 rad/s of machine time (β >= {:.4g}): β would have to "
         "be {}× smaller (a machine {}× faster, or a coupling {:.4g}× softer)",
         max_machine_frequency_per_k0, pr.beta_for_oscillation, f, f, factor * factor);
-  } else if (group == "beta.bandwidth") {
+  } else if (group.kind == Kind::beta_bandwidth) {
     c.scene_key = "gear.stiffness";
     c.sentence = fmt::format(
         "the contact oscillation sqrt(c/Θ) must stay within what the machine's amplifiers follow, {:.4g} rad/s of "
@@ -470,7 +479,7 @@ Conflict describe(const ScalingProblem& pr, const std::string& group, double fac
         "unit), so β >= {:.4g}: β would have to be {}× smaller (amplifiers {}× faster, or a coupling {:.4g}× "
         "softer)",
         pr.amplifier_frequency, pr.beta_for_bandwidth, f, f, factor * factor);
-  } else if (group == "lock.catch") {
+  } else if (group.kind == Kind::lock_catch) {
     c.scene_key = "friction.self_locking";
     c.sentence = fmt::format(
         "the self-locking catch must stop the secondary (peak speed {:.4g} rad/s) within {:g} % of M0m as spring "
@@ -479,15 +488,15 @@ Conflict describe(const ScalingProblem& pr, const std::string& group, double fac
         "{:.4g}× slower)",
         pr.bounds.at(Maximum::speed_secondary), 100 * lock_catch_error, pr.amplifying_gain(), pr.lock_catch_torque,
         f, f, std::sqrt(factor));
-  } else if (group == "beta.lock") {
+  } else if (group.kind == Kind::beta_lock) {
     c.scene_key = "friction.self_locking";
     c.sentence = fmt::format(
         "the self-locking reaction must catch the load within 0.1 % of the run (β >= {:.4g}): β would have to "
         "be {}× smaller (a machine whose integrators are {}× faster)", pr.beta_for_lock, f, f);
   } else {
-    const bool low = group.size() > 4 && group.compare(group.size() - 4, 4, ".low") == 0;
-    const std::string name = group.substr(0, group.rfind('.'));
-    const auto setting = parse_setting(name);
+    const bool low = group.kind == Kind::setting_low;
+    const std::string name = to_string(*group.setting);
+    const auto setting = group.setting;
     std::string formula;
     for (const auto& r : pr.coefficients)
       if (r.name == setting) formula = r.formula;
@@ -512,6 +521,20 @@ Conflict describe(const ScalingProblem& pr, const std::string& group, double fac
 
 }  // namespace
 
+std::string ConstraintGroup::name() const {
+  switch (kind) {
+    case Kind::peak: return "peak." + to_string(*signal);
+    case Kind::floor: return "floor." + to_string(*signal);
+    case Kind::beta_oscillation: return "beta.oscillation";
+    case Kind::beta_bandwidth: return "beta.bandwidth";
+    case Kind::beta_lock: return "beta.lock";
+    case Kind::lock_catch: return "lock.catch";
+    case Kind::setting_high: return to_string(*setting) + ".high";
+    case Kind::setting_low: return to_string(*setting) + ".low";
+  }
+  return "";
+}
+
 std::vector<Conflict> explain_infeasible(const ScalingProblem& pr) {
   if (solve_scaling(pr)) return {};
   Model m(pr, {}, true);
@@ -519,23 +542,23 @@ std::vector<Conflict> explain_infeasible(const ScalingProblem& pr) {
   if (m.lp().solve() != LinearProgram::Status::optimal)
     throw Error("the elastic scaling problem has no solution", Error::Kind::internal);
   std::vector<Conflict> out;
-  for (const auto& [group, column] : m.slacks()) {
+  for (const auto& [name, slack] : m.slacks()) {
+    const auto& [group, column] = slack;
     const double s = m.lp().value(column);
     if (s <= 1e-7) continue;
     Conflict c = describe(pr, group, std::exp(s));
     // What it is up against: the other binding limits on the same scale.
-    const auto key = parse_maximum(group.substr(group.find('.') + 1));
+    const std::optional<Maximum> key = group.signal;
     // A floor is pushed against by rows that raise the scale, a peak bound by
     // rows that lower it: only those are the other side of the conflict.
-    const bool floor = group.rfind("floor.", 0) == 0;
+    const bool floor = group.kind == ConstraintGroup::Kind::floor;
     std::vector<std::string> against, change;
     for (const auto& r : m.meanings()) {
       if (!key || r.option == 0 || !chosen(m, r.option) || !m.lp().row_binds(r.row, binding) || !r.scales.count(*key))
         continue;
       const double e = r.scales.at(*key);
-      const bool largest = r.sentence.find("at its largest") != std::string::npos;
-      const bool stage = r.sentence.find("stages in front") != std::string::npos;
-      const bool raises = stage || (largest ? e < 0 : e > 0);
+      const bool largest = r.at_largest;
+      const bool raises = r.stage || (largest ? e < 0 : e > 0);
       if (raises != floor) continue;
       {
         against.push_back(r.sentence);

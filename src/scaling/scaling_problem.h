@@ -93,10 +93,24 @@ struct ScalingSolution {
   int below_range = 0;     ///< coefficients set below α_min
 };
 
+/// A group of rows that the elastic problem relaxes together, by what it
+/// limits: a signal's peak bound or floor, one of β's floors, the lock's
+/// catch, or a coefficient at its largest or smallest.
+struct ConstraintGroup {
+  enum class Kind { peak, floor, beta_oscillation, beta_bandwidth, beta_lock, lock_catch, setting_high, setting_low };
+  Kind kind = Kind::peak;
+  std::optional<Maximum> signal;   ///< for peak and floor
+  std::optional<Setting> setting;  ///< for setting_high and setting_low
+  /// The group's name, the key of a relaxation: "peak.torque",
+  /// "floor.contact_twist", "beta.oscillation", "lock.catch", "alpha11.high".
+  std::string name() const;
+};
+
 /// One group of constraints that conflict, with the smallest relaxation (a
 /// factor, > 1) that the elastic problem found, in the user's words.
 struct Conflict {
-  std::string group;   ///< e.g. "alpha11.high", "floor.contact_twist", "peak.torque", "beta.oscillation"
+  std::string group;   ///< the constraint's name(), the key to relax it by
+  ConstraintGroup constraint;
   double factor = 1;   ///< relax the group by this factor
   std::string scene_key;  ///< the key to change, for file:line
   std::string sentence;

@@ -20,10 +20,11 @@ constexpr double least_share_of_bound = 0.01;
 
 /// The simulated peaks as the bounds (--autoscale).
 Maxima simulated_bounds(const Maxima& a_priori, const PhysicalPeaks& x, std::vector<std::string>& notes) {
-  Maxima m = autoscaled(a_priori, x, 0, notes);
+  std::set<Maximum> simulated;
+  Maxima m = autoscaled(a_priori, x, 0, notes, &simulated);
   for (const auto& [key, bound] : a_priori.entries()) {
     auto& basis = m.basis[key];
-    if (basis.rfind("autoscaled", 0) != 0) continue;
+    if (!simulated.count(key)) continue;
     basis = "the simulated peak";
     if (m.at(key) < least_share_of_bound * bound) {
       m.at(key) = least_share_of_bound * bound;

@@ -20,10 +20,10 @@ struct Referral {
   std::string formula;   ///< "J/i²"
 };
 
-/// What a drive engineer brings beyond the paper's equivalent gear (issue
-/// 14): the gear ratio and values on the load shaft (already referred into
-/// the fields of Scene), a drive torque that varies in time or follows a
-/// motor line, viscous friction, and whether the load is reactive.
+/// What a drive engineer brings beyond the paper's equivalent gear: the gear
+/// ratio and values on the load shaft (already referred into the fields of
+/// Scene), a drive torque that varies in time or follows a motor line,
+/// viscous friction, and whether the load is reactive.
 struct DriveExtras {
   double ratio = 1;                     ///< i = φ̇p/φ̇load
   std::vector<Referral> referrals;      ///< each load-shaft value given

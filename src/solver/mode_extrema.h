@@ -77,8 +77,8 @@ class ModeExtrema {
   mutable bool have_rest_ = false;
   mutable GearState rest_{};
   static constexpr std::size_t max_powers = 6;
-  /// Made as forms are asked for (an array of them, zeroed per segment,
-  /// cost bild6a 1 % of its instructions).
+  /// Made as forms are asked for: a segment asks for few, and zeroing a
+  /// full array per segment would cost more than it saves.
   mutable boost::container::static_vector<Powers, max_powers> powers_;
   double kappa_ = 0, delta_ = 0, quarter_ = 0;
   /// Under a ramp (taken at the first point asked for): the forcing's rate b1
@@ -95,8 +95,8 @@ class ModeExtrema {
   std::optional<GrowthBound> growth_;
   /// With speed feedback a point costs a matrix exponential, and every form
   /// and sign bisects at the same times: the last few points are kept.
-  /// (Sized only with speed feedback: an array here cost every other scene 2 %
-  /// in constructing it per segment.)
+  /// Sized only with speed feedback, so that other scenes do not construct
+  /// it per segment.
   static constexpr int cached_points = 16;
   mutable std::vector<Point> cache_;
   mutable int cache_next_ = 0;

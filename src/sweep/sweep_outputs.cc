@@ -5,6 +5,7 @@
 
 #include "common/error.h"
 #include "common/gnuplot.h"
+#include "common/notices.h"
 
 namespace gearpatch::sweep {
 
@@ -39,8 +40,8 @@ void SweepOutputs::write(const SweepTable& table) {
   draw("--plot", plot_format_, overlay_plot);
   draw("--figures-plot", figures_format_, figures_plot);
   set_.commit();
-  if (!set_.has("--out")) std::fputs(text.c_str(), stderr);
-  for (const std::string& w : warnings) std::fprintf(stderr, "gearpatch sweep: warning: %s\n", w.c_str());
+  if (!set_.has("--out")) notice(text);
+  for (const std::string& w : warnings) notice("gearpatch sweep: warning: " + w + "\n");
 }
 
 namespace {
