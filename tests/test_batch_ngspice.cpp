@@ -22,6 +22,7 @@
 
 #include "common/error.h"
 #include "spice/batch_ngspice.h"
+#include "spice/retry.h"
 #include "spice/scripted_simulator.h"
 #include "support.h"
 
@@ -252,6 +253,27 @@ TEST_CASE("a rawfile cut short by a full disk is a failure though ngspice exits 
   CHECK_THAT(message, Catch::StartsWith("ngspice's output is cut short: its rawfile holds 2 of the 3 points"));
   fs::remove_all(kept_deck(message).parent_path());
   fs::remove_all(full_disk.parent_path());
+}
+
+TEST_CASE("a numerical abort is retried once with the fallback deck, a deck error is not", "[spice]") {
+  const std::string aborts =
+      "timestep too small\n"
+      "V1 in 0 PULSE(0 1 0 1p 1p 1u 2u)\n"
+      "B1 out 0 V = v(in) > 0.5 ? 1e6*exp(v(out)*100) : 0\n"
+      "R1 out 0 1k\n"
+      ".tran 1n 10u\n"
+      ".end\n";
+  const std::string fine = "rc\nV1 in 0 DC 1\nR1 in out 1k\nC1 out 0 1n\n.tran 1u 10u\n.end\n";
+  const auto fallback = [&] { return std::optional<std::string>(fine); };
+  auto ngspice = make_batch_ngspice();
+  std::optional<Retry> retry;
+  run_with_retry(*ngspice, aborts, {}, fallback, "the fine deck", retry);
+  REQUIRE(retry);
+  CHECK_THAT(retry->first_failure, Catch::StartsWith("ngspice aborted: timestep too small"));
+  std::optional<Retry> none;
+  CHECK_THROWS_WITH(run_with_retry(*ngspice, "broken\n.tran 1m\n.end\n", {}, fallback, "the fine deck", none),
+                    Catch::StartsWith("ngspice could not run the deck"));
+  CHECK_FALSE(none);
 }
 
 TEST_CASE("ngspice console output is classified in ngspice's words", "[spice]") {
