@@ -22,6 +22,7 @@
 
 #include "common/error.h"
 #include "spice/batch_ngspice.h"
+#include "spice/retry.h"
 #include "spice/scripted_simulator.h"
 #include "support.h"
 
@@ -254,28 +255,53 @@ TEST_CASE("a rawfile cut short by a full disk is a failure though ngspice exits 
   fs::remove_all(full_disk.parent_path());
 }
 
+TEST_CASE("a numerical abort is retried once with the fallback deck, a deck error is not", "[spice]") {
+  const std::string aborts =
+      "timestep too small\n"
+      "V1 in 0 PULSE(0 1 0 1p 1p 1u 2u)\n"
+      "B1 out 0 V = v(in) > 0.5 ? 1e6*exp(v(out)*100) : 0\n"
+      "R1 out 0 1k\n"
+      ".tran 1n 10u\n"
+      ".end\n";
+  const std::string fine = "rc\nV1 in 0 DC 1\nR1 in out 1k\nC1 out 0 1n\n.tran 1u 10u\n.end\n";
+  const auto fallback = [&] { return std::optional<std::string>(fine); };
+  auto ngspice = make_batch_ngspice();
+  std::optional<Retry> retry;
+  run_with_retry(*ngspice, aborts, {}, fallback, "the fine deck", retry);
+  REQUIRE(retry);
+  CHECK_THAT(retry->first_failure, Catch::StartsWith("ngspice aborted: timestep too small"));
+  std::optional<Retry> none;
+  CHECK_THROWS_WITH(run_with_retry(*ngspice, "broken\n.tran 1m\n.end\n", {}, fallback, "the fine deck", none),
+                    Catch::StartsWith("ngspice could not run the deck"));
+  CHECK_FALSE(none);
+}
+
 TEST_CASE("ngspice console output is classified in ngspice's words", "[spice]") {
   const std::string stats = "Total elapsed time (seconds) = 0.003\n\nTotal DRAM available = 24105.133 MB.\n";
-  CHECK_FALSE(diagnose_ngspice_failure("Circuit: rc\n" + stats, "", 0));
-  CHECK(diagnose_ngspice_failure(stats,
-                                 "Warning: singular matrix:  check node out\n\n"
-                                 "doAnalyses: iteration limit reached\n\nrun simulation(s) aborted\n",
-                                 0) ==
+  // The message, and "abort" when ngspice gave up numerically (the retry's cue).
+  const auto said = [](const std::optional<NgspiceFailure>& f) {
+    return f ? f->message + (f->numerical_abort ? " [abort]" : "") : std::string("(ran)");
+  };
+  CHECK(said(diagnose_ngspice_failure("Circuit: rc\n" + stats, "", 0)) == "(ran)");
+  CHECK(said(diagnose_ngspice_failure(stats,
+                                      "Warning: singular matrix:  check node out\n\n"
+                                      "doAnalyses: iteration limit reached\n\nrun simulation(s) aborted\n",
+                                      0)) ==
         "ngspice aborted the simulation: Warning: singular matrix:  check node out / "
-        "doAnalyses: iteration limit reached");
-  CHECK(diagnose_ngspice_failure(stats,
-                                 "Error: unknown subckt: x1 in out nosuch\n"
-                                 "    Simulation interrupted due to error!\n\n"
-                                 "Error: there aren't any circuits loaded.\n",
-                                 1) ==
+        "doAnalyses: iteration limit reached [abort]");
+  CHECK(said(diagnose_ngspice_failure(stats,
+                                      "Error: unknown subckt: x1 in out nosuch\n"
+                                      "    Simulation interrupted due to error!\n\n"
+                                      "Error: there aren't any circuits loaded.\n",
+                                      1)) ==
         "ngspice could not run the deck: Error: unknown subckt: x1 in out nosuch / "
         "Error: there aren't any circuits loaded.");
-  CHECK(diagnose_ngspice_failure("Circuit: rc\nsomething odd happened\n" + stats, "", 1) ==
+  CHECK(said(diagnose_ngspice_failure("Circuit: rc\nsomething odd happened\n" + stats, "", 1)) ==
         "ngspice failed with exit status 1: something odd happened");
-  CHECK(diagnose_ngspice_failure(stats, "", 1) == "ngspice failed with exit status 1: no message");
-  CHECK(diagnose_ngspice_failure("", "doAnalyses: TRAN:  Timestep too small; time = 1.5e-06, timestep = 1e-20: "
-                                     "cause unrecorded.\n", 1) ==
-        "ngspice aborted: timestep too small at time = 1.5e-06 s (timestep 1e-20 s): cause unrecorded.");
+  CHECK(said(diagnose_ngspice_failure(stats, "", 1)) == "ngspice failed with exit status 1: no message");
+  CHECK(said(diagnose_ngspice_failure("", "doAnalyses: TRAN:  Timestep too small; time = 1.5e-06, timestep = 1e-20: "
+                                          "cause unrecorded.\n", 1)) ==
+        "ngspice aborted: timestep too small at time = 1.5e-06 s (timestep 1e-20 s): cause unrecorded. [abort]");
 }
 
 TEST_CASE("Vectors::at names a missing vector and lists those present", "[spice]") {

@@ -30,9 +30,19 @@ class Error : public std::runtime_error {
   /// The scene key the error is about, if it is about the scene.
   const std::optional<std::string>& scene_key() const { return scene_key_; }
 
+  /// A simulator failure that the simulator gave up on numerically ("timestep
+  /// too small", "simulation(s) aborted"), which a changed method can cure.
+  static Error numerical_abort(const std::string& message) {
+    Error e(message, Kind::simulator);
+    e.numerical_abort_ = true;
+    return e;
+  }
+  bool is_numerical_abort() const { return numerical_abort_; }
+
  private:
   Kind kind_;
   std::optional<std::string> scene_key_;
+  bool numerical_abort_ = false;
 };
 
 /// The exit status of a command that ended in an Error of this kind: 2 bad

@@ -110,22 +110,22 @@ std::optional<std::string> timestep_too_small(const std::string& text) {
 
 }  // namespace
 
-std::optional<std::string> diagnose_ngspice_failure(std::string_view stdout_text,
+std::optional<NgspiceFailure> diagnose_ngspice_failure(std::string_view stdout_text,
                                                     std::string_view stderr_text,
                                                     int exit_status) {
   std::string all = std::string(stderr_text) + "\n" + std::string(stdout_text);
-  if (auto message = timestep_too_small(all)) return message;
+  if (auto message = timestep_too_small(all)) return NgspiceFailure{*message, true};
   // With a .control block the exit status is whatever `quit` says, so an abort
   // counts even when the status is 0.
   if (all.find("simulation(s) aborted") != std::string::npos) {
-    return "ngspice aborted the simulation: " + last_words(stdout_text, stderr_text);
+    return NgspiceFailure{"ngspice aborted the simulation: " + last_words(stdout_text, stderr_text), true};
   }
   if (exit_status == 0) return std::nullopt;
   auto errors = error_lines(stderr_text);
   if (errors.empty()) errors = error_lines(stdout_text);
-  if (!errors.empty()) return "ngspice could not run the deck: " + join_quoted(errors);
-  return fmt::format("ngspice failed with exit status {}: {}", exit_status,
-                     last_words(stdout_text, stderr_text));
+  if (!errors.empty()) return NgspiceFailure{"ngspice could not run the deck: " + join_quoted(errors)};
+  return NgspiceFailure{
+      fmt::format("ngspice failed with exit status {}: {}", exit_status, last_words(stdout_text, stderr_text))};
 }
 
 namespace {
@@ -185,7 +185,8 @@ Vectors run_in(const std::string& executable, const ScratchDir& dir, const RunLi
   if (exit.signal) {
     throw Error(fmt::format("ngspice was killed by signal {}: {}", *exit.signal, last_words(out, err)), kSimulator);
   }
-  if (auto message = diagnose_ngspice_failure(out, err, exit.exit_code)) throw Error(*message, kSimulator);
+  if (auto failure = diagnose_ngspice_failure(out, err, exit.exit_code))
+    throw failure->numerical_abort ? Error::numerical_abort(failure->message) : Error(failure->message, kSimulator);
   if (!fs::exists(dir / "out.raw")) {
     throw Error("ngspice wrote no rawfile: " + last_words(out, err), kSimulator);
   }
@@ -215,7 +216,8 @@ class BatchNgspice : public Simulator {
         fs::remove(dir.path() / "out.raw", ec);
         kept = (dir.path() / "deck.cir").string();
       }
-      throw Error(fmt::format("{} (deck kept at {})", e.what(), kept), kSimulator);
+      const std::string message = fmt::format("{} (deck kept at {})", e.what(), kept);
+      throw e.is_numerical_abort() ? Error::numerical_abort(message) : Error(message, kSimulator);
     }
   }
 

@@ -4,10 +4,6 @@
 
 namespace gearpatch::spice {
 
-bool is_numerical_abort(const std::string& message) {
-  return message.rfind("ngspice aborted", 0) == 0;
-}
-
 Vectors run_with_retry(Simulator& simulator, const std::string& deck, const RunLimits& limits,
                        const std::function<std::optional<std::string>()>& fallback, const std::string& change,
                        std::optional<Retry>& retry) {
@@ -15,7 +11,7 @@ Vectors run_with_retry(Simulator& simulator, const std::string& deck, const RunL
   try {
     return simulator.run(deck, limits);
   } catch (const Error& e) {
-    if (e.kind() != Error::Kind::simulator || !is_numerical_abort(e.what())) throw;
+    if (e.kind() != Error::Kind::simulator || !e.is_numerical_abort()) throw;
     first = e.what();
   }
   const std::optional<std::string> second = fallback();

@@ -13,12 +13,8 @@ struct Retry {
   std::string change;         ///< what the second deck does differently ("method=gear")
 };
 
-/// True for a run ngspice gave up on numerically ("timestep too small", "run
-/// simulation(s) aborted"), the failure a changed integration method can cure;
-/// not for a missing binary, a timeout or an unreadable deck.
-bool is_numerical_abort(const std::string& message);
-
-/// Runs `deck`; if ngspice aborts it numerically and `fallback` gives a
+/// Runs `deck`; if ngspice aborts it numerically (Error::is_numerical_abort:
+/// not a missing binary, a timeout or an unreadable deck) and `fallback` gives a
 /// second deck, runs that once (bounded: no third run) and records the retry
 /// in `retry`. A second failure throws, naming both.
 Vectors run_with_retry(Simulator& simulator, const std::string& deck, const RunLimits& limits,
