@@ -109,6 +109,16 @@ bool process_gone(pid_t pid) {
   return close != std::string::npos && stat.size() > close + 2 && stat[close + 2] == 'Z';
 }
 
+/// A behavioural source that switches on an exponential of its own node
+/// voltage: no step is small enough once the pulse arrives.
+const std::string aborting_deck =
+    "timestep too small\n"
+    "V1 in 0 PULSE(0 1 0 1p 1p 1u 2u)\n"
+    "B1 out 0 V = v(in) > 0.5 ? 1e6*exp(v(out)*100) : 0\n"
+    "R1 out 0 1k\n"
+    ".tran 1n 10u\n"
+    ".end\n";
+
 }  // namespace
 
 TEST_CASE("batch ngspice runs an RC deck and returns its vectors", "[spice]") {
@@ -145,15 +155,7 @@ TEST_CASE("a deck ngspice cannot parse gives ngspice's error lines", "[spice]") 
 }
 
 TEST_CASE("a run that aborts with timestep too small names the time and node", "[spice]") {
-  // A behavioural source that switches on an exponential of its own node
-  // voltage: no step is small enough once the pulse arrives.
-  const std::string deck =
-      "timestep too small\n"
-      "V1 in 0 PULSE(0 1 0 1p 1p 1u 2u)\n"
-      "B1 out 0 V = v(in) > 0.5 ? 1e6*exp(v(out)*100) : 0\n"
-      "R1 out 0 1k\n"
-      ".tran 1n 10u\n"
-      ".end\n";
+  const std::string deck = aborting_deck;
   std::string message = failure_of(*make_batch_ngspice(), deck);
   CHECK_THAT(message, Catch::Matches(R"(ngspice aborted: timestep too small at time = [0-9.e+-]+ s \(timestep [0-9.e+-]+ s\): trouble with node "out" \(deck kept at .*\))"));
   check_deck_kept(message, deck);
@@ -256,13 +258,7 @@ TEST_CASE("a rawfile cut short by a full disk is a failure though ngspice exits 
 }
 
 TEST_CASE("a numerical abort is retried once with the fallback deck, a deck error is not", "[spice]") {
-  const std::string aborts =
-      "timestep too small\n"
-      "V1 in 0 PULSE(0 1 0 1p 1p 1u 2u)\n"
-      "B1 out 0 V = v(in) > 0.5 ? 1e6*exp(v(out)*100) : 0\n"
-      "R1 out 0 1k\n"
-      ".tran 1n 10u\n"
-      ".end\n";
+  const std::string aborts = aborting_deck;
   const std::string fine = "rc\nV1 in 0 DC 1\nR1 in out 1k\nC1 out 0 1n\n.tran 1u 10u\n.end\n";
   const auto fallback = [&] { return std::optional<std::string>(fine); };
   auto ngspice = make_batch_ngspice();
