@@ -87,6 +87,12 @@ void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::C
 /// own resolution (an 8-bit step at a coarse volts per division, or noise),
 /// the recording may not tell the machine from the reference at this
 /// tolerance: that sentence in place of "computes something else"; else none.
+/// The recording is not of this scene and no rule says how: what remains is a setting or a wire.
+std::string unexplained_recording() {
+  return "no inverted channel, swap of two channels or other time scale explains the recording: the machine "
+         "computes something else than this scene (a setting or a wire)";
+}
+
 std::optional<std::string> too_coarse(const VerifyResult& r, const MeasuredTrace& m) {
   std::string outside;
   for (const SignalError& e : r.comparison.signals) {
@@ -148,12 +154,9 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     judge_comparison(r);
     if (!r.passed) {
       r.diagnosis = what_the_trace_looks_like(m, r.reference, model, circuit, scene.duration, r.tolerance);
-      if (const auto coarse = too_coarse(r, m); coarse && r.diagnosis.size() == 1 &&
-                                                r.diagnosis[0].rfind("no inverted channel", 0) == 0)
-        r.diagnosis[0] = *coarse;
+      if (r.diagnosis.empty()) r.diagnosis.push_back(too_coarse(r, m).value_or(unexplained_recording()));
       // The rules that read the run itself; the rest measure changed decks, which a recording has none of.
-      for (const std::string& d : diagnose(r, patch))
-        if (d.rfind("no rule applies", 0) != 0) r.diagnosis.push_back(d);
+      for (std::string& d : diagnose(r, patch)) r.diagnosis.push_back(std::move(d));
     }
     r.source = measured_notes(out, mo.path);
     return out;

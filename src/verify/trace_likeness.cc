@@ -122,9 +122,6 @@ std::vector<std::string> what_the_trace_looks_like(const MeasuredTrace& m, const
                                 k >= 1 ? k : 1 / k, k >= 1 ? "slower" : "faster", k * circuit.beta, circuit.beta,
                                 pct(e), pct(read)));
   }
-  if (out.empty())
-    out.push_back("no inverted channel, swap of two channels or other time scale explains the recording: the "
-                  "machine computes something else than this scene (a setting or a wire)");
   return out;
 }
 

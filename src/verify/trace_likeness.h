@@ -13,7 +13,7 @@ namespace gearpatch::verify {
 /// and the whole recording against the reference at other time scales. Each
 /// hypothesis that brings the rms error (fraction of full scale) within the
 /// tolerance and below half of the error as read is a sentence naming the
-/// fix; none is one sentence saying so.
+/// fix; empty when none does.
 std::vector<std::string> what_the_trace_looks_like(const MeasuredTrace& measured, const Trajectory& reference,
                                                    const GearModel& model, const circuit::Circuit& circuit,
                                                    double duration, double tolerance);
