@@ -29,7 +29,7 @@ double worst_measured(const nlohmann::json& j) {
 }  // namespace
 
 TEST_CASE("a hardware run beyond the tolerance but within its predicted budget fails, the budget printed beside it",
-          "[tolerance]") {
+          "[tolerance][slow]") {
   testing::TempFolder dir("verdict-budget");
   std::string output;
   const int status = testing::run_command(kBinary + " verify " + testing::scene_path("bild6c") +

@@ -122,7 +122,7 @@ double ablated_error(const Scene& s, const verify::VerifyOptions& o, const toler
 
 }  // namespace
 
-TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[tolerance]") {
+TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[tolerance][slow]") {
   const std::string name = GENERATE("bild5b", "bild6a", "bild6c");
   CAPTURE(name);
   const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
@@ -157,7 +157,7 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
 }
 
 TEST_CASE("every example scene's deck on the-analog-thing errs within its predicted budget, up to the band the "
-          "budget is checked to (1.5 times)", "[tolerance]") {
+          "budget is checked to (1.5 times)", "[tolerance][slow]") {
   const std::string name = GENERATE("bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c", "driven");
   CAPTURE(name);
   const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");

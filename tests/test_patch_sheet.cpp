@@ -132,7 +132,7 @@ TEST_CASE("every example and drive scene runs from its ideal sheet on each machi
 }
 
 TEST_CASE("seeded random scenes run from their ideal sheets on each machine and pass wherever the generated deck "
-          "passes", "[patching][sheet]") {
+          "passes", "[patching][sheet][slow]") {
   const auto start = std::chrono::steady_clock::now();
   int runs = 0, refused = 0, passed = 0;
   for (const RandomScene& r : random_scenes(sheet_seed, sheet_random_count))

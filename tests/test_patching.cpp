@@ -249,7 +249,7 @@ TEST_CASE("the committed patch sheets in patches/ are what the allocation writes
 }
 
 TEST_CASE("the picture renders through Graphviz for every example scene and machine and names every element",
-          "[patching]") {
+          "[patching][slow]") {
   for (const auto& scene : example_and_drive_scenes())
     for (const auto& machine : machines) {
       INFO(scene << " on " << machine);

@@ -50,7 +50,7 @@ HardwareOutcome run_hardware(const Scene& scene) {
 
 TEST_CASE("random scenes at the hardware level on the classic machine at 2 %: every deck runs to its end, "
           "the pass rate per feature class holds",
-          "[random_hardware]") {
+          "[random_hardware][slow]") {
   const std::vector<RandomScene> set = random_scenes(1, 42);  // six of each feature class
   std::vector<HardwareOutcome> outcomes(set.size());
   std::mutex mutex;

@@ -83,7 +83,7 @@ TEST_CASE("every example scene passes at the ideal level within 0.5 % of full sc
   }
 }
 
-TEST_CASE("at the hardware level a scene passes within tolerance or fails with a cause", "[verify][ngspice]") {
+TEST_CASE("at the hardware level a scene passes within tolerance or fails with a cause", "[verify][ngspice][slow]") {
   auto ngspice = spice::make_batch_ngspice();
   verify::VerifyOptions o;
   o.level = circuit::Level::hardware;
