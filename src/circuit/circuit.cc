@@ -421,7 +421,7 @@ bool Circuit::uses(BlockKind kind) const {
   return std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) { return b.block == kind; });
 }
 
-double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : 5e-3; }
+double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : hardware_comparator_offset; }
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
 double lock_band(Level level, double gbw_hz, double loop_rate) {

@@ -16,7 +16,7 @@ int run_budget(const std::vector<std::string>& args) {
   const std::string jobs_help = fmt::format("runs at once (default: the cores, here {})", runs::core_count());
   options.add_options()
       ("autoscale", "scale from the simulated peaks (as verify --autoscale)")
-      ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit per run, s")
+      ("timeout", po::value<double>()->default_value(default_timeout_seconds), "ngspice wall-clock limit per run, s")
       ("jobs,j", po::value<unsigned>(), jobs_help.c_str());
   add_output_options(options, "the budget", "the budget");
   add_quality_option(options, "");

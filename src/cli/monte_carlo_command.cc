@@ -163,7 +163,7 @@ int run_monte_carlo(const std::vector<std::string>& args) {
       ("tolerance", po::value<std::string>(), "judge each draw at this percentage of full scale, as verify "
        "--tolerance (default: hardware's 2%)")
       ("autoscale", "scale from the simulated peaks (as verify --autoscale)")
-      ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit per run, s, up to 86400")
+      ("timeout", po::value<double>()->default_value(default_timeout_seconds), "ngspice wall-clock limit per run, s, up to 86400")
       ("plot", po::value<std::string>(), "histogram of each signal's worst amplitude error over the draws, "
        "the tolerance marked (.png or .svg)");
   add_run_folder_options(options, "draw");

@@ -24,7 +24,7 @@ int run_settings(const std::vector<std::string>& args) {
       ("no-check", "skip the simulation that checks every peak against its scale")
       ("exact-maxima", "keep the estimated speed maxima as computed instead of rounding them "
        "up to 1, 2, 5 × 10^n")
-      ("comparator-offset", po::value<double>()->default_value(5e-3, "0.005"),
+      ("comparator-offset", po::value<double>()->default_value(hardware_comparator_offset, "0.005"),
        "comparator offsets δ1, δ2 in machine units, (0, 0.5]: above the comparators' hysteresis and the "
        "op-amps' zero errors (the ideal netlist uses 1e-5)");
   add_scaling_option(options);

@@ -90,7 +90,7 @@ int run_verify(const std::vector<std::string>& args) {
       ("allow-control", "run a --deck even if it holds ngspice commands or reads other files")
       ("plot", po::value<std::string>(), "write circuit and reference traces to FILE (.png or .svg, gnuplot); "
        "a plot that cannot be made is a warning, the verdict stands")
-      ("timeout", po::value<double>()->default_value(300), "ngspice wall-clock limit, s (at least 0.001; inf: none)")
+      ("timeout", po::value<double>()->default_value(default_timeout_seconds), "ngspice wall-clock limit, s (at least 0.001; inf: none)")
       ("check-step", "run the generated deck once more at half the largest ngspice step and report how far "
        "that moves the circuit's signals (the step is chosen so that this stays below a tenth of the tolerance)")
       ("keep-deck", po::value<std::string>(), "also write the deck that was run to FILE (written before the "

@@ -12,6 +12,11 @@ namespace gearpatch {
 
 /// How to run one child program (ngspice, gnuplot, ...): no shell, the
 /// arguments as given, a C numeric locale, stdin from /dev/null, stdout and
+/// How long a child may run and how much it may write unless the caller says
+/// otherwise: `--timeout`'s default, and the cap a chattering ngspice meets.
+inline constexpr double default_timeout_seconds = 300;
+inline constexpr std::uintmax_t default_output_cap_bytes = std::uintmax_t{1} << 30;
+
 /// stderr to files, its own process group, and bounds on time and output.
 struct ChildSpec {
   std::string name;                      ///< for messages: "ngspice"
@@ -22,8 +27,8 @@ struct ChildSpec {
   std::filesystem::path stdout_file;     ///< absolute, created (mode 0600) or truncated
   std::filesystem::path stderr_file;
   std::vector<std::filesystem::path> counted_files;  ///< other files whose bytes count to the cap
-  std::chrono::milliseconds timeout{std::chrono::minutes(5)};
-  std::uintmax_t max_output_bytes = std::uintmax_t{1} << 30;
+  std::chrono::milliseconds timeout{static_cast<long long>(default_timeout_seconds * 1000)};
+  std::uintmax_t max_output_bytes = default_output_cap_bytes;
   Error::Kind failure_kind = Error::Kind::simulator;  ///< of the errors thrown below
   bool stops_itself = false;  ///< on an interrupt: sent SIGTERM and waited for (common/interrupt.h)
 };

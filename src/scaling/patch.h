@@ -39,6 +39,10 @@ struct Potentiometer {
 /// or the paper's recipe (section 6's maxima, β from them; Table 1 by hand).
 enum class ScalingMethod { solved, paper };
 
+/// δ1 and δ2 of a real machine's deck, in MU: they clear the comparators'
+/// hysteresis (±1e-3 MU) plus the op-amps' 1 mV offsets (circuit.h says why).
+inline constexpr double hardware_comparator_offset = 5e-3;
+
 /// What make_patch is asked to do besides the a-priori scaling.
 struct PatchOptions {
   ScalingMethod method = ScalingMethod::solved;
@@ -52,9 +56,9 @@ struct PatchOptions {
   bool round_speeds = true;  ///< round estimated speed maxima up to 1-2-5 × 10^n
   std::optional<double> beta;       ///< overrides the scene's machine.time_scale
   /// δ1, δ2 in MU (the paper: "by experiment"). The default suits a real
-  /// machine: it clears the comparators' hysteresis and the op-amps' offsets
-  /// (circuit::comparator_offset(Level::hardware)); the ideal deck uses less.
-  double comparator_offset = 5e-3;
+  /// machine: it clears the comparators' hysteresis and the op-amps' offsets;
+  /// the ideal deck uses less (circuit::comparator_offset).
+  double comparator_offset = hardware_comparator_offset;
   /// With autoscale on a self-locking scene, pose the lock's catch
   /// (scaling_problem.h): for the ideal level, where a larger β costs
   /// nothing. On hardware the offsets drift over the longer machine run

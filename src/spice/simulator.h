@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 #include <vector>
+#include "common/process.h"
 
 namespace gearpatch::spice {
 
@@ -19,8 +20,8 @@ struct Vectors {
 /// Bounds on one run: a chattering circuit can step at femtoseconds for ever
 /// and write gigabytes, so both wall-clock time and output size are capped.
 struct RunLimits {
-  std::chrono::milliseconds timeout{std::chrono::minutes(5)};
-  std::uintmax_t max_output_bytes = std::uintmax_t{1} << 30;
+  std::chrono::milliseconds timeout{static_cast<long long>(default_timeout_seconds * 1000)};
+  std::uintmax_t max_output_bytes = default_output_cap_bytes;
   /// If not empty, the deck is also written to this path (kept after the run,
   /// whatever its outcome), and a failure message names it.
   std::string keep_deck_as;

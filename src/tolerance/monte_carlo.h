@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/process.h"
 #include "runs/job_list.h"
 
 namespace gearpatch::tolerance {
@@ -22,7 +23,7 @@ struct MonteCarloStudy {
   std::uint64_t seed = 1;
   bool autoscale = false;
   std::optional<double> tolerance;  ///< fraction of full scale; default: hardware's
-  double timeout = 300;             ///< s per ngspice run
+  double timeout = default_timeout_seconds;  ///< s per ngspice run
 
   double judged_tolerance() const;
 };

@@ -26,11 +26,16 @@ struct SignalError {
   std::vector<std::pair<double, double>> failed_spans;  ///< s, where the circuit leaves the tube
 };
 
+/// The documented default tolerances of the two levels: fractions of each
+/// signal's full scale in value and of the run in time.
+inline constexpr double ideal_level_tolerance = 0.005;
+inline constexpr double hardware_level_tolerance = 0.02;
+
 /// What the comparison needs besides the two runs.
 struct CompareSettings {
   std::vector<std::pair<Signal, double>> full_scales;
   double duration = 1;     ///< s, the run
-  double tolerance = 0.005;  ///< value tolerance as a fraction of full scale, time tolerance as one of the run
+  double tolerance = ideal_level_tolerance;  ///< value tolerance as a fraction of full scale, time tolerance as one of the run
   double grazing_depth = 0;  ///< rad beyond ε that the machine cannot resolve
   double contact_hysteresis = 0;  ///< rad, a recording's resolution in Δφ (impacts.h)
 };

@@ -18,7 +18,7 @@
 namespace gearpatch::verify {
 
 double default_tolerance(circuit::Level level) {
-  return level == circuit::Level::ideal ? 0.005 : 0.02;
+  return level == circuit::Level::ideal ? ideal_level_tolerance : hardware_level_tolerance;
 }
 
 namespace {
