@@ -20,7 +20,7 @@ CheckedPatch patch_request(const PatchRequest& r, const Progress& progress) {
   vo.autoscale = r.autoscale;
   vo.paper_scaling = r.paper_scaling;
   checked.offsets = check_offsets(scene, vo, runs::core_count());
-  for (const std::string& w : checked.offsets->warnings()) progress("warning: " + w);
+  for (const std::string& w : checked.offsets->warnings()) if (progress) progress("warning: " + w);
   return checked;
 }
 

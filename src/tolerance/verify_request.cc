@@ -63,9 +63,9 @@ VerdictReport verify_request(VerifyRequest r, const Progress& progress) {
   const Scene scene = load_scene(r.scene_file, machine);
   if (o.level == circuit::Level::hardware && !o.deck_text) {  // what the machine's offsets allow, before the run
     r.verdict.offsets = check_offsets(scene, o, r.verdict.workers);
-    for (const std::string& w : r.verdict.offsets->warnings()) progress("warning: " + w);
+    for (const std::string& w : r.verdict.offsets->warnings()) if (progress) progress("warning: " + w);
   }
-  progress(fmt::format("running ngspice on {} ({} level)...", scene.name, level_name(o.level)));
+  if (progress) progress(fmt::format("running ngspice on {} ({} level)...", scene.name, level_name(o.level)));
   return verify_and_predict(scene, o, r.verdict);
 }
 
