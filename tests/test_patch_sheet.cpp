@@ -11,6 +11,7 @@
 #include <optional>
 #include <fmt/format.h>
 
+#include "common/json_text.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "machine/machine_file.h"
@@ -38,7 +39,7 @@ Wiring ideal_sheet(const Scene& scene) {
   o.comparator_offset = circuit::comparator_offset(circuit::Level::ideal);
   o.lock_catch = true;
   const MachinePatch p = patch_on_machine(make_patch(scene, o), circuit::Level::ideal);
-  return wiring_from_json(to_json(p), scene.name + ".sheet.json");
+  return wiring_from_json(json_text(to_json(p)), scene.name + ".sheet.json");
 }
 
 /// verify on the sheet's own deck (or, without a sheet, on the program's

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "common/json_text.h"
 #include "common/error.h"
 #include "model/gear_model.h"
 #include "scaling/linear_program.h"
@@ -191,7 +192,7 @@ TEST_CASE("settings shows the constraint that fixed each scale; the deck says sc
   CHECK_THAT(patch.fixed_by.at("torque"), Catch::Contains("the peak bound of torque"));
   const std::string table = to_table(patch);
   CHECK_THAT(table, Catch::Contains("fixed by") && Catch::Contains("worst signal level 0.909 MU"));
-  const std::string json = to_json(patch);
+  const std::string json = json_text(to_json(patch));
   CHECK_THAT(json, Catch::Contains("\"fixed_by\"") && Catch::Contains("\"scaling\": \"solved\""));
   // The header words, old and new, back to method and autoscale.
   CHECK(parse_scaling_name("paper") == std::pair(ScalingMethod::paper, false));

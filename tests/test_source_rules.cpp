@@ -40,10 +40,8 @@ TEST_CASE("code decides on typed values: a string prefix is tested only where te
       {"verify/scope_formats.cc", 4},  // comment lines and unit headers of a recorded trace
   };
   // Identities still written as text by the module that reads them back:
-  // the names circuit/circuit.cc gives its instances, error_budget's
-  // component names.
+  // error_budget's component names.
   const std::map<std::string, int> untyped = {
-      {"patching/signal_names.cc", 3},
       {"tolerance/error_budget.cc", 2},
   };
   std::map<std::string, int> allowed = parsing;

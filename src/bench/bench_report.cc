@@ -168,7 +168,7 @@ json scene_json(const SceneResult& s) {
 
 }  // namespace
 
-std::string to_json(const BenchResult& r) {
+nlohmann::json to_json(const BenchResult& r) {
   json j;
   j["machine"] = {{"nproc", r.machine.nproc},
                   {"cpu_model", r.machine.cpu_model},
@@ -203,9 +203,88 @@ std::string to_json(const BenchResult& r) {
                             {"median_pareto", p.median_pareto}});
   j["default_on_pareto_front"] = r.default_on_front;
   j["default_on_median_pareto_front"] = r.default_on_median_front;
-  // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
-  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  return j;
 }
+
+namespace {
+
+/// The ngspice knobs, one at a time around the default, and their Pareto fronts.
+std::string knobs_markdown(const BenchResult& r) {
+  std::string md;
+  md += fmt::format(
+      "ngspice knobs, one at a time around the default, over all {} scenes. Error: fraction of full "
+      "scale, the worst and the median over the scenes; time: total ngspice CPU time, median of {} "
+      "runs each, taken in turn. **Bold**: on the Pareto front of time and worst error; (m): on the "
+      "front of time and median error. The fronts count times within {:.1f} % (the typical spread over "
+      "the repetitions) and errors within {:.0f} % as equal.\n\n",
+      r.scenes.size(), r.ngspice_repetitions, 100 * r.resolution.seconds, 100 * r.resolution.error);
+  md += "| knob | level, settings | worst error | worst scene | median error | time (s) | preset |\n"
+        "|---|---|---|---|---|---|---|\n";
+  for (const AggregatePoint& a : r.aggregate) {
+    const Knob& k = r.knobs[a.knob];
+    std::string label = a.pareto ? "**" + k.label + "**" : k.label;
+    if (a.median_pareto) label += " (m)";
+    md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", label, knob_settings(k), sci(a.worst_error),
+                      a.worst_scene, sci(a.median_error), secs(a.total_seconds), presets_of(k));
+  }
+  md += fmt::format("\nThe default (`normal`) is {}on the Pareto front of time and worst error, and {}on "
+                    "the front of time and median error.\n\n",
+                    r.default_on_front ? "" : "**not** ", r.default_on_median_front ? "" : "**not** ");
+  return md;
+}
+
+/// The quality presets as measured.
+std::string presets_markdown(const BenchResult& r) {
+  std::string md;
+  md += "The quality presets as measured in this run (`verify --quality NAME`):\n\n"
+        "| preset | level, settings | worst error | median error | time (s) | on the front (worst / median) |\n"
+        "|---|---|---|---|---|---|\n";
+  for (const PresetResult& p : r.presets)
+    md += fmt::format("| `{}` | {} | {} | {} | {} | {} / {} |\n", p.name, knob_settings(r.knobs[p.knob]),
+                      sci(p.worst_error), sci(p.median_error), secs(p.total_seconds), p.pareto ? "yes" : "no",
+                      p.median_pareto ? "yes" : "no");
+  md += "\n";
+  return md;
+}
+
+/// The reference solvers: exact against adaptive at matched accuracy and at each tolerance.
+std::string solvers_markdown(const BenchResult& r) {
+  std::string md;
+  bool any_solvers = false;
+  for (const SceneResult& s : r.scenes) any_solvers = any_solvers || s.solvers.has_value();
+  if (!any_solvers) return md;
+  md += "Reference solvers: exact (closed form per mode) against adaptive (Dormand–Prince 5(4)) at "
+        "matched accuracy — the adaptive run whose error is closest to the exact solver's — and at "
+        "each tolerance (time per run, median):\n\n";
+  md += "| scene | exact (s) | exact error (est.) | matched tolerance | its error | adaptive (s) | speed-up |";
+  for (double t : r.tolerances) md += fmt::format(" × at {} |", format_number(t));
+  md += "\n|---|---|---|---|---|---|---|";
+  for (std::size_t i = 0; i < r.tolerances.size(); ++i) md += "---|";
+  md += "\n";
+  for (const SceneResult& s : r.scenes) {
+    if (!s.solvers || !s.solvers->matched) continue;
+    const SolverComparison& c = *s.solvers;
+    md += fmt::format("| {} | {:.3g} | {} | {} | {} | {:.3g} | **{:.0f}×** |", s.scene, c.exact_seconds,
+                      sci(c.exact_error), format_number(c.matched->tolerance), sci(c.matched->error),
+                      c.matched->seconds, c.matched->speedup);
+    for (double t : r.tolerances) {
+      auto it = std::find_if(c.ratios.begin(), c.ratios.end(), [&](const SolverRatio& x) { return x.tolerance == t; });
+      md += it == c.ratios.end() ? " failed |" : fmt::format(" {:.0f} |", it->speedup);
+    }
+    md += "\n";
+  }
+  int measured = 0, fast = 0;
+  for (const SceneResult& s : r.scenes)
+    if (s.solvers && s.solvers->matched) {
+      ++measured;
+      fast += s.solvers->at_least_100x;
+    }
+  md += fmt::format("\nThe exact solver is at least 100× faster than the adaptive one at matched accuracy on "
+                    "{} of {} scenes.\n\n", fast, measured);
+  return md;
+}
+
+}  // namespace
 
 std::string to_markdown(const BenchResult& r, const std::string& plot_path) {
   const MachineInfo& m = r.machine;
@@ -214,68 +293,10 @@ std::string to_markdown(const BenchResult& r, const std::string& plot_path) {
       m.memory_bytes / 1073741824.0, m.ngspice_version, m.compiler, m.optimized ? " (optimised)" : "", m.date);
   if (!r.command.empty()) md += "Reproduce: `" + r.command + "`\n\n";
   if (!r.aggregate.empty()) {
-    md += fmt::format(
-        "ngspice knobs, one at a time around the default, over all {} scenes. Error: fraction of full "
-        "scale, the worst and the median over the scenes; time: total ngspice CPU time, median of {} "
-        "runs each, taken in turn. **Bold**: on the Pareto front of time and worst error; (m): on the "
-        "front of time and median error. The fronts count times within {:.1f} % (the typical spread over "
-        "the repetitions) and errors within {:.0f} % as equal.\n\n",
-        r.scenes.size(), r.ngspice_repetitions, 100 * r.resolution.seconds, 100 * r.resolution.error);
-    md += "| knob | level, settings | worst error | worst scene | median error | time (s) | preset |\n"
-          "|---|---|---|---|---|---|---|\n";
-    for (const AggregatePoint& a : r.aggregate) {
-      const Knob& k = r.knobs[a.knob];
-      std::string label = a.pareto ? "**" + k.label + "**" : k.label;
-      if (a.median_pareto) label += " (m)";
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", label, knob_settings(k), sci(a.worst_error),
-                        a.worst_scene, sci(a.median_error), secs(a.total_seconds), presets_of(k));
-    }
-    md += fmt::format("\nThe default (`normal`) is {}on the Pareto front of time and worst error, and {}on "
-                      "the front of time and median error.\n\n",
-                      r.default_on_front ? "" : "**not** ", r.default_on_median_front ? "" : "**not** ");
-    if (!r.presets.empty()) {
-      md += "The quality presets as measured in this run (`verify --quality NAME`):\n\n"
-            "| preset | level, settings | worst error | median error | time (s) | on the front (worst / median) |\n"
-            "|---|---|---|---|---|---|\n";
-      for (const PresetResult& p : r.presets)
-        md += fmt::format("| `{}` | {} | {} | {} | {} | {} / {} |\n", p.name, knob_settings(r.knobs[p.knob]),
-                          sci(p.worst_error), sci(p.median_error), secs(p.total_seconds), p.pareto ? "yes" : "no",
-                          p.median_pareto ? "yes" : "no");
-      md += "\n";
-    }
+    md += knobs_markdown(r);
+    if (!r.presets.empty()) md += presets_markdown(r);
   }
-  bool any_solvers = false;
-  for (const SceneResult& s : r.scenes) any_solvers = any_solvers || s.solvers.has_value();
-  if (any_solvers) {
-    md += "Reference solvers: exact (closed form per mode) against adaptive (Dormand–Prince 5(4)) at "
-          "matched accuracy — the adaptive run whose error is closest to the exact solver's — and at "
-          "each tolerance (time per run, median):\n\n";
-    md += "| scene | exact (s) | exact error (est.) | matched tolerance | its error | adaptive (s) | speed-up |";
-    for (double t : r.tolerances) md += fmt::format(" × at {} |", format_number(t));
-    md += "\n|---|---|---|---|---|---|---|";
-    for (std::size_t i = 0; i < r.tolerances.size(); ++i) md += "---|";
-    md += "\n";
-    for (const SceneResult& s : r.scenes) {
-      if (!s.solvers || !s.solvers->matched) continue;
-      const SolverComparison& c = *s.solvers;
-      md += fmt::format("| {} | {:.3g} | {} | {} | {} | {:.3g} | **{:.0f}×** |", s.scene, c.exact_seconds,
-                        sci(c.exact_error), format_number(c.matched->tolerance), sci(c.matched->error),
-                        c.matched->seconds, c.matched->speedup);
-      for (double t : r.tolerances) {
-        auto it = std::find_if(c.ratios.begin(), c.ratios.end(), [&](const SolverRatio& x) { return x.tolerance == t; });
-        md += it == c.ratios.end() ? " failed |" : fmt::format(" {:.0f} |", it->speedup);
-      }
-      md += "\n";
-    }
-    int measured = 0, fast = 0;
-    for (const SceneResult& s : r.scenes)
-      if (s.solvers && s.solvers->matched) {
-        ++measured;
-        fast += s.solvers->at_least_100x;
-      }
-    md += fmt::format("\nThe exact solver is at least 100× faster than the adaptive one at matched accuracy on "
-                      "{} of {} scenes.\n\n", fast, measured);
-  }
+  md += solvers_markdown(r);
   if (!plot_path.empty())
     md += fmt::format("![work-precision plot: error against time, log-log, Pareto front of the ngspice "
                       "runs]({})\n",

@@ -1,4 +1,5 @@
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "bench/bench.h"
@@ -10,7 +11,7 @@ namespace gearpatch::bench {
 std::string to_table(const BenchResult& result);
 
 /// Every number of the run, with the machine, as JSON.
-std::string to_json(const BenchResult& result);
+nlohmann::json to_json(const BenchResult& result);
 
 /// The README section: machine, presets, the knobs over all scenes, exact
 /// against adaptive, the plot and the command that reproduces them.

@@ -131,6 +131,82 @@ void offset_of(const std::string& name, const MachineProfile& m, data& ctx) {
   ctx.set("offset_delta", num(delta));
 }
 
+/// The hardware op-amp model (templates/README.md): the machine profile's
+/// amplifier (generic: the TL071 figures above) and its two variants.
+void opamp_context(const MachineProfile& m, data& ctx) {
+  using F = HardwareFigures;
+  const AmplifierModel& oa = m.amplifier;
+  const double gm = 2 * kPi * oa.bandwidth_hz * F::opamp_cp;
+  const double imax = oa.slew_volts_per_second * F::opamp_cp;
+  ctx.set("oa_a0", num(oa.gain));
+  ctx.set("oa_gbw", num(oa.bandwidth_hz));
+  ctx.set("oa_sr", num(oa.slew_volts_per_second));
+  ctx.set("oa_vos", num(oa.offset_volts));
+  ctx.set("oa_ib", num(F::opamp_ib));
+  ctx.set("oa_rid", num(F::opamp_rid));
+  ctx.set("oa_ro", num(F::opamp_ro));
+  ctx.set("oa_cp", num(F::opamp_cp));
+  ctx.set("oa_rp", num(oa.gain / gm));
+  ctx.set("oa_imax", num(imax));
+  ctx.set("oa_gm_over_imax", num(gm / imax));
+  ctx.set("oa_vlin", num(imax / gm));
+  ctx.set("oa_gclamp", num(F::opamp_gclamp));
+  data variants{data::type::list};
+  for (bool hold : {false, true}) {
+    data variant;
+    variant.set("name", hold ? "gp_opamp_ic" : "gp_opamp");
+    variant.set("hold", hold);
+    variants.push_back(variant);
+  }
+  ctx.set("opamp_variants", variants);
+}
+
+/// The hardware diode, analog switch and lock latch.
+void diode_and_switch_context(const MachineProfile& m, double vsat, data& ctx) {
+  using F = HardwareFigures;
+  ctx.set("d_is", num(F::diode_is));
+  ctx.set("d_rs", num(F::diode_rs));
+  ctx.set("d_n", num(F::diode_n));
+  ctx.set("d_cjo", num(F::diode_cjo));
+  ctx.set("d_m", num(F::diode_m));
+  ctx.set("d_tt", num(F::diode_tt));
+  ctx.set("d_bv", num(F::diode_bv));
+  ctx.set("d_ibv", num(F::diode_ibv));
+  ctx.set("hsw_ron", num(m.switch_resistance));
+  ctx.set("hsw_roff", num(F::switch_roff));
+  ctx.set("hsw_vt", num(F::switch_vt));
+  ctx.set("hsw_vh", num(F::switch_vh));
+  ctx.set("hsw_tau", num(F::switch_tau));
+  ctx.set("hlatch_vt", num(0.45 * vsat));  // on the triggers' +-vsat
+  ctx.set("hlatch_vh", num(vsat));
+  ctx.set("hlatch_reset", num(2 * vsat));  // the control while reset: below vt - vh
+  ctx.set("hsw_rdel", num(F::switch_rdel));
+  ctx.set("hsw_cdel", num(F::switch_tau / F::switch_rdel));
+}
+
+/// The hardware limiter's clamp and the comparator's Schmitt trigger.
+void limiter_and_comparator_context(const MachineProfile& m, double vsat, data& ctx) {
+  using F = HardwareFigures;
+  const double u = m.unit_volts;
+  const double imax = m.amplifier.slew_volts_per_second * F::opamp_cp;
+  // Limiter: the clamp current while the op-amp sits at its (slightly
+  // overdriven) swing limit, and the diode drop at that current.
+  const double iclamp = (vsat + imax / F::opamp_gclamp - u) / (F::limiter_rs + F::opamp_ro);
+  const double vd = F::diode_n * F::thermal_voltage * std::log1p(iclamp / F::diode_is) + iclamp * F::diode_rs;
+  ctx.set("lim_rs", num(F::limiter_rs));
+  ctx.set("lim_iclamp", num(iclamp));
+  ctx.set("lim_vd", num(vd));
+  ctx.set("lim_vclamp", num(u - vd));
+  // Comparator: Schmitt trigger with thresholds offset*U +- h.
+  const double h = m.comparator_hysteresis * u;
+  const double r2 = comparator_r2(m);
+  ctx.set("cmp_r1", num(F::comparator_r1));
+  ctx.set("cmp_r2", num(r2));
+  ctx.set("cmp_hyst", num(h));
+  ctx.set("cmp_hyst_mu", num(m.comparator_hysteresis));
+  ctx.set("cmp_th_scale", num(r2 / (F::comparator_r1 + r2)));
+}
+
 /// Every number any template of the level may use.
 data context(Level level, const MachineProfile& m) {
   check_machine(level, m);
@@ -159,71 +235,14 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("cmp_width_mu", num(F::comparator_width_mu));
     return ctx;
   }
-  using F = HardwareFigures;
-  const double vsat = m.supply_volts - F::opamp_headroom;
+  const double vsat = m.supply_volts - HardwareFigures::opamp_headroom;
   ctx.set("vsat", num(vsat));
-  // The machine profile's amplifier (generic: the TL071 figures above).
-  const AmplifierModel& oa = m.amplifier;
-  const double gm = 2 * kPi * oa.bandwidth_hz * F::opamp_cp;
-  const double imax = oa.slew_volts_per_second * F::opamp_cp;
-  ctx.set("oa_a0", num(oa.gain));
-  ctx.set("oa_gbw", num(oa.bandwidth_hz));
-  ctx.set("oa_sr", num(oa.slew_volts_per_second));
-  ctx.set("oa_vos", num(oa.offset_volts));
-  ctx.set("oa_ib", num(F::opamp_ib));
-  ctx.set("oa_rid", num(F::opamp_rid));
-  ctx.set("oa_ro", num(F::opamp_ro));
-  ctx.set("oa_cp", num(F::opamp_cp));
-  ctx.set("oa_rp", num(oa.gain / gm));
-  ctx.set("oa_imax", num(imax));
-  ctx.set("oa_gm_over_imax", num(gm / imax));
-  ctx.set("oa_vlin", num(imax / gm));
-  ctx.set("oa_gclamp", num(F::opamp_gclamp));
-  data variants{data::type::list};
-  for (bool hold : {false, true}) {
-    data variant;
-    variant.set("name", hold ? "gp_opamp_ic" : "gp_opamp");
-    variant.set("hold", hold);
-    variants.push_back(variant);
-  }
-  ctx.set("opamp_variants", variants);
-  ctx.set("d_is", num(F::diode_is));
-  ctx.set("d_rs", num(F::diode_rs));
-  ctx.set("d_n", num(F::diode_n));
-  ctx.set("d_cjo", num(F::diode_cjo));
-  ctx.set("d_m", num(F::diode_m));
-  ctx.set("d_tt", num(F::diode_tt));
-  ctx.set("d_bv", num(F::diode_bv));
-  ctx.set("d_ibv", num(F::diode_ibv));
-  ctx.set("hsw_ron", num(m.switch_resistance));
-  ctx.set("hsw_roff", num(F::switch_roff));
-  ctx.set("hsw_vt", num(F::switch_vt));
-  ctx.set("hsw_vh", num(F::switch_vh));
-  ctx.set("hsw_tau", num(F::switch_tau));
-  ctx.set("hlatch_vt", num(0.45 * vsat));  // on the triggers' +-vsat
-  ctx.set("hlatch_vh", num(vsat));
-  ctx.set("hlatch_reset", num(2 * vsat));  // the control while reset: below vt - vh
-  ctx.set("hsw_rdel", num(F::switch_rdel));
-  ctx.set("hsw_cdel", num(F::switch_tau / F::switch_rdel));
+  opamp_context(m, ctx);
+  diode_and_switch_context(m, vsat, ctx);
   // Integrator: hold the summing junction at the op-amp's balance point.
-  ctx.set("sj_ic", num(-oa.offset_volts));
+  ctx.set("sj_ic", num(-m.amplifier.offset_volts));
   ctx.set("buffered", m.potentiometers_buffered);
-  // Limiter: the clamp current while the op-amp sits at its (slightly
-  // overdriven) swing limit, and the diode drop at that current.
-  const double iclamp = (vsat + imax / F::opamp_gclamp - u) / (F::limiter_rs + F::opamp_ro);
-  const double vd = F::diode_n * F::thermal_voltage * std::log1p(iclamp / F::diode_is) + iclamp * F::diode_rs;
-  ctx.set("lim_rs", num(F::limiter_rs));
-  ctx.set("lim_iclamp", num(iclamp));
-  ctx.set("lim_vd", num(vd));
-  ctx.set("lim_vclamp", num(u - vd));
-  // Comparator: Schmitt trigger with thresholds offset*U +- h.
-  const double h = m.comparator_hysteresis * u;
-  const double r2 = comparator_r2(m);
-  ctx.set("cmp_r1", num(F::comparator_r1));
-  ctx.set("cmp_r2", num(r2));
-  ctx.set("cmp_hyst", num(h));
-  ctx.set("cmp_hyst_mu", num(m.comparator_hysteresis));
-  ctx.set("cmp_th_scale", num(r2 / (F::comparator_r1 + r2)));
+  limiter_and_comparator_context(m, vsat, ctx);
   return ctx;
 }
 

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <numbers>
 #include <set>
+#include <utility>
 
 #include "circuit/stribeck_generator.h"
 #include "common/error.h"
@@ -14,6 +15,20 @@
 namespace gearpatch::circuit {
 
 namespace {
+
+/// The scene feature the parts built in its scope belong to: set on
+/// construction, restored on leaving the scope.
+class Section {
+ public:
+  Section(std::string& feature, std::string within) : feature_(feature), outer_(std::exchange(feature, within)) {}
+  ~Section() { feature_ = outer_; }
+  Section(const Section&) = delete;
+  Section& operator=(const Section&) = delete;
+
+ private:
+  std::string& feature_;
+  std::string outer_;
+};
 
 /// Builds the circuit block by block; each add_* method is one part of Bild 4.
 class Builder {
@@ -48,8 +63,18 @@ class Builder {
                          std::string release = "") {
     const Potentiometer* p = patch_.find(pot);
     if (!p) throw Error("internal: the circuit needs " + to_string(pot) + " but the settings have none");
-    return {p->stages == 0 ? from : staged(from, *p), pot, static_cast<int>(p->weight), std::move(ctrl),
-            std::move(release)};
+    AmplifierInput in{p->stages == 0 ? from : staged(from, *p), pot, static_cast<int>(p->weight), std::move(ctrl),
+                      std::move(release)};
+    in.feature = feature_;
+    return in;
+  }
+
+  /// The input through `pot` from `from` where the scene has that setting, a part of `feature`.
+  void optional_input(std::vector<AmplifierInput>& in, const std::string& feature, const std::string& from,
+                      Setting pot) {
+    if (!has(pot)) return;
+    const Section section(feature_, feature);
+    in.push_back(through(from, pot));
   }
 
   /// The extra stages of a solved coefficient no potentiometer reaches alone:
@@ -58,6 +83,7 @@ class Builder {
   /// followed by an inverter, so the potentiometer sees `from`'s sign. Built
   /// once per source and potentiometer (alpha14 takes dw twice).
   std::string staged(const std::string& from, const Potentiometer& p) {
+    const Section core(feature_, "");  // the stages serve the coefficient, whatever its feature
     const std::string base = fmt::format("stg_{}_{}", to_string(p.name), from);
     if (!staged_.insert(base).second) return std::abs(p.stages) % 2 ? base + "_inv" : fmt::format("{}{}", base, std::abs(p.stages));
     const std::vector<int>& w = c_.machine.weights;
@@ -81,7 +107,8 @@ class Builder {
 
   void amplifier(std::string name, bool integrator, std::string out, std::vector<AmplifierInput> in,
                  std::string comment) {
-    c_.amplifiers.push_back({std::move(name), integrator, std::move(out), std::move(in), std::move(comment)});
+    c_.amplifiers.push_back(
+        {std::move(name), integrator, std::move(out), std::move(in), std::move(comment), feature_});
   }
   void inverter(const std::string& name, const std::string& from, const std::string& out,
                 const std::string& comment) {
@@ -90,7 +117,12 @@ class Builder {
   void block(std::string name, BlockKind kind, std::vector<std::string> nodes, std::string param,
              std::string comment) {
     c_.blocks.push_back({std::move(name), kind, std::move(nodes), std::move(param),
-                         std::move(comment)});
+                         std::move(comment), feature_});
+  }
+  /// Records what `node` carries, with the feature of the part that drives it.
+  void mean(const std::string& node, std::string signal, std::string description, std::string unit = "",
+            double full_scale = 0) {
+    c_.nodes[node] = {std::move(signal), std::move(unit), full_scale, std::move(description), feature_};
   }
   void omit(const std::string& what) { c_.omitted.push_back(what); }
   /// The initial-value setting of an integrator, if the patch has it (else it starts from 0).
@@ -130,34 +162,38 @@ class Builder {
   void add_primary() {  // (6.1): φ̇p' = (M_a − M_Rp − M0)/Θp; the integrator inverts
     std::vector<AmplifierInput> in;
     if (has(Setting::alpha2)) {
+      const Section drive(feature_, "drive torque");
+      mean("drive_n", "−Ma/Mam", "drive torque, inverted", "N·m", patch_.maxima.drive_torque);
       if (patch_.drive_profile.empty())
         c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
       else
         c_.pwl_sources.emplace_back("drive_n", drive_waveform());
       in.push_back(through("drive_n", Setting::alpha2));
     }
-    if (has(Setting::alpha_speed_p)) in.push_back(through("wp", Setting::alpha_speed_p));
+    optional_input(in, "speed feedback on the primary", "wp", Setting::alpha_speed_p);
     if (has(Setting::alpha_stribeck_p))
       stribeck_generator("p", "wp", patch_.maxima.speed_primary, Setting::alpha_stribeck_p, in);
-    if (has(Setting::alpha1)) in.push_back(through("sign_p", Setting::alpha1));
+    optional_input(in, "primary bearing friction", "sign_p", Setting::alpha1);
     in.push_back(through("m", Setting::alpha3));
     amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
+    mean("wp", "+φ̇p/φ̇pm", "primary speed", "rad/s", patch_.maxima.speed_primary);
     c_.initial_conditions.emplace_back("wp", initial(Setting::alpha6));
   }
 
   void add_secondary() {  // (6.2): φ̇s' = (M0 − M_Rz − M_Rs − M_Re − M_L)/Θs
     std::vector<AmplifierInput> in{through("m_n", Setting::alpha4)};
-    if (has(Setting::alpha5)) in.push_back(through("sign_s", Setting::alpha5));
-    if (has(Setting::alpha_viscous_s)) in.push_back(through("ws", Setting::alpha_viscous_s));
+    optional_input(in, "secondary bearing friction", "sign_s", Setting::alpha5);
+    optional_input(in, "viscous friction on the secondary", "ws", Setting::alpha_viscous_s);
     if (has(Setting::alpha_stribeck_s))
       stribeck_generator("s", "ws", patch_.maxima.speed_secondary, Setting::alpha_stribeck_s, in);
     if (has(Setting::alpha_tooth)) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
+      const Section tooth(feature_, "tooth friction");
       in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
       in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
     }
-    if (has(Setting::alpha_load))
-      in.push_back(through(patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load));
+    optional_input(in, "load torque", patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load);
     if (has(Setting::alpha_lock)) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
+      const Section locking(feature_, "self-locking");
       // Without backlash, latched until the secondary has stopped: the
       // saturated reaction, released as the flanks change sides again, only
       // reflected the secondary's speed about the primary's instead of
@@ -173,12 +209,17 @@ class Builder {
       in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n", latch ? "stopped_fwd" : ""));
     }
     if (has(Setting::alpha_load)) {
+      const Section load(feature_, "load torque");
       c_.sources.emplace_back("ref_p", 1.0);
       c_.sources.emplace_back("ref_n", -1.0);
+      mean("ref_p", "+1 MU", "the positive reference");
+      mean("ref_n", "−1 MU", "the negative reference");
     }
     amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
+    mean("ws", "+φ̇s/φ̇sm", "secondary speed", "rad/s", patch_.maxima.speed_secondary);
     c_.initial_conditions.emplace_back("ws", initial(Setting::alpha7));
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
+    mean("ws_n", "−φ̇s/φ̇sm", "secondary speed, inverted", "rad/s", patch_.maxima.speed_secondary);
   }
 
   /// The Stribeck dip as a diode function generator: n limiters on the speed
@@ -187,6 +228,7 @@ class Builder {
   /// break-away level block 2/14 takes off.
   void stribeck_generator(const std::string& shaft, const std::string& speed, double full_scale,
                           Setting pot, std::vector<AmplifierInput>& in) {
+    const Section stribeck(feature_, "Stribeck friction");
     const std::vector<double> breaks = stribeck_breakpoints(stribeck_steps);
     for (std::size_t i = 0; i < breaks.size(); ++i) {
       const std::string out = fmt::format("strib_{}{}", shaft, i + 1);
@@ -215,24 +257,32 @@ class Builder {
   void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)
     amplifier("sum_dw", false, "dw_n", {through("wp", Setting::alpha8), through("ws_n", Setting::alpha9)},
               "(6.3) relative speed: dw_n = -dphi'/dphi'_m");
+    mean("dw_n", "−Δφ̇/Δφ̇m", "relative speed, inverted", "rad/s", patch_.maxima.relative_speed);
     amplifier("int_x", true, "x", {through("dw_n", Setting::alpha10)}, "(6.4) twist: x = +dphi/dphi_m");
+    mean("x", "+Δφ/Δφm", "twist", "rad", patch_.maxima.twist);
     c_.initial_conditions.emplace_back("x", initial(Setting::alpha12));
     if (patch_.dead_zone) {
+      const Section backlash(feature_, "backlash");
       block("dz", BlockKind::dead_zone, {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
+      mean("dz_n", "−deadzone(Δφ)/Δφm", "twist beyond the backlash, inverted", "rad", patch_.maxima.twist);
     } else {
       inverter("inv_x", "x", "dz_n", "no backlash: (6.9) is the identity, dz_n = -x");
+      mean("dz_n", "−deadzone(Δφ)/Δφm", "twist, inverted (no backlash)", "rad", patch_.maxima.twist);
       omit("block 5 dead zone: no backlash");
     }
     amplifier("amp_xp", false, "xp", {through("dz_n", Setting::alpha11)},
               "(6.9) contact twist: xp = +dphi'/dphi'_m");
+    mean("xp", "+Δφ'/Δφ'm", "contact twist", "rad", patch_.maxima.contact_twist);
   }
 
   void add_transmitted_torque() {  // (6.8), (6.10)
     std::vector<AmplifierInput> in{through("xp", Setting::alpha13)};
     if (has(Setting::alpha14)) {
+      const Section damping(feature_, "damping");
       inverter("inv_dw", "dw_n", "dw", "dw = +dphi'/dphi'_m");
+      mean("dw", "+Δφ̇/Δφ̇m", "relative speed", "rad/s", patch_.maxima.relative_speed);
       if (patch_.dead_zone) {  // (6.10) corrected: damping only while the flanks touch
-        contact_comparators("damp", "{delta1}", "blocks 7/9, (6.10)");
+        contact_comparators("damp", "{delta1}", "δ1", "blocks 7/9, (6.10)");
         in.push_back(through("dw", Setting::alpha14, "damp_p"));
         in.push_back(through("dw", Setting::alpha14, "damp_n"));
       } else {
@@ -247,7 +297,9 @@ class Builder {
               capped ? "(6.8) spring and damper: kv_n = -(s + q), s = c*dphi', q = d*dphi'' in contact"
                      : "(6.8) transmitted torque: m_n = -M0/M0m");
     if (capped) add_capped_law();
+    mean("m_n", "−M0/M0m", "transmitted torque, inverted", "N·m", patch_.maxima.torque);
     inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
+    mean("m", "+M0/M0m", "transmitted torque", "N·m", patch_.maxima.torque);
   }
 
   /// The capped law (Modelica's ElastoBacklash) from half-wave diodes:
@@ -255,12 +307,18 @@ class Builder {
   /// s + min(s, q) on the positive side, s + max(s, q) on the negative, and 0
   /// where that would pull. Each relu is a halfwave block (pos = −max(in, 0),
   /// neg = −min(in, 0)).
+  /// Its summers and half-waves are the capped contact law's; the inverters of
+  /// kv and the spring's potentiometer stay with the core, the damper's with damping.
   void add_capped_law() {
     inverter("inv_kv", "kv_n", "kv", "kv = s + q");
-    amplifier("sum_cap_d", false, "cap_d_n",
-              {through("xp", Setting::alpha13), through("dw_n", Setting::alpha14, "damp_p"),
-               through("dw_n", Setting::alpha14, "damp_n")},
-              "capped law: cap_d_n = q - s");
+    std::vector<AmplifierInput> q_minus_s{through("xp", Setting::alpha13)};
+    {
+      const Section damping(feature_, "damping");
+      q_minus_s.push_back(through("dw_n", Setting::alpha14, "damp_p"));
+      q_minus_s.push_back(through("dw_n", Setting::alpha14, "damp_n"));
+    }
+    const Section capped(feature_, "capped contact law");
+    amplifier("sum_cap_d", false, "cap_d_n", q_minus_s, "capped law: cap_d_n = q - s");
     block("cap_half_d", BlockKind::halfwave, {"cap_d_n", "cap_r1_n", "cap_r2"}, "",
           "capped law: cap_r1_n = -relu(q - s), cap_r2 = relu(s - q)");
     // Each side's half is switched on only while its flanks touch (the damping
@@ -270,7 +328,10 @@ class Builder {
               "capped law: cap_g_n = -(s + q - relu(q - s)) while damp_p (flanks touch forward)");
     block("cap_half_g", BlockKind::halfwave, {"cap_g_n", "cap_g_low", "cap_push_p"}, "",
           "capped law: cap_push_p = relu(s + q - relu(q - s)), the positive side's torque");
-    inverter("inv_kv2", "kv_n", "kv2", "kv2 = s + q, for the negative side");
+    {
+      const Section core(feature_, "");
+      inverter("inv_kv2", "kv_n", "kv2", "kv2 = s + q, for the negative side");
+    }
     amplifier("sum_cap_h", false, "cap_h",
               {{"kv2", std::nullopt, 1, "damp_n"}, {"cap_r2", std::nullopt, 1, "damp_n"}},
               "capped law: cap_h = -(s + q) - relu(s - q) while damp_n (flanks touch backward)");
@@ -282,14 +343,23 @@ class Builder {
   }
 
   /// Two comparators that tell which flanks touch: <name>_p while the watched
-  /// signal exceeds δ (delta1, delta2), <name>_n while it is below −δ.
-  void contact_comparators(const std::string& name, const std::string& offset, const std::string& what) {
+  /// signal exceeds δ (delta1, delta2; `delta` its symbol), <name>_n while it is below −δ.
+  void contact_comparators(const std::string& name, const std::string& offset, const std::string& delta,
+                           const std::string& what) {
     const std::string in = on_x() ? "x" : "xp", in_n = in + "_n";
-    if (inverted_.insert(in).second) inverter("inv_" + in, in, in_n, in_n + " = -" + in);
+    if (inverted_.insert(in).second) {
+      const Section core(feature_, "");  // shared by damping and self-locking
+      inverter("inv_" + in, in, in_n, in_n + " = -" + in);
+      const NodeMeaning& watched = c_.nodes.at(in);
+      mean(in_n, in == "x" ? "−Δφ/Δφm" : "−Δφ'/Δφ'm", watched.description + ", inverted", watched.unit,
+           watched.full_scale);
+    }
     block("cmp_" + name + "_p", BlockKind::comparator, {in, name + "_p"}, offset,
           what + ": " + in + " > " + offset);
     block("cmp_" + name + "_n", BlockKind::comparator, {in_n, name + "_n"}, offset,
           what + ": " + in + " < -" + offset);
+    mean(name + "_p", "Δφ' > " + delta, "the flanks touch forward");
+    mean(name + "_n", "Δφ' < −" + delta, "the flanks touch backward");
   }
 
   /// Whether the contact comparators watch X against the dead zone's own
@@ -330,15 +400,21 @@ class Builder {
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
     const std::string band = format_band(friction_band(level_));
     if (has(Setting::alpha1)) {
+      const Section friction(feature_, "primary bearing friction");
       inverter("inv_wp", "wp", "wp_n", "wp_n = -wp");
+      mean("wp_n", "−φ̇p/φ̇pm", "primary speed, inverted", "rad/s", patch_.maxima.speed_primary);
       block("sign_p", BlockKind::limiter, {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
+      mean("sign_p", "+sign φ̇p", "the sign of the primary speed");
     } else {
       omit("block 2 primary bearing friction: k_Rp = 0");
     }
-    if (has(Setting::alpha5))
+    if (has(Setting::alpha5)) {
+      const Section friction(feature_, "secondary bearing friction");
       block("sign_s", BlockKind::limiter, {"ws_n", "sign_s"}, band, "block 14, (6.6): sign_s = +sign(ws)");
-    else
+      mean("sign_s", "+sign φ̇s", "the sign of the secondary speed");
+    } else {
       omit("block 14 secondary bearing friction: k_Rs = 0");
+    }
   }
 
   void add_tooth_friction() {  // (5.5): M_Rz = k_z·|M0|·sign φ̇s
@@ -346,10 +422,15 @@ class Builder {
       omit("block 8 |M0| and the tooth friction switch: eta_z = 1");
       return;
     }
+    const Section tooth(feature_, "tooth friction");
     block("abs_m", BlockKind::abs, {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
+    mean("m_abs_n", "−|M0|/M0m", "the transmitted torque's magnitude, inverted", "N·m", patch_.maxima.torque);
     inverter("inv_abs_m", "m_abs_n", "m_abs", "m_abs = |m|");
+    mean("m_abs", "+|M0|/M0m", "the transmitted torque's magnitude", "N·m", patch_.maxima.torque);
     block("cmp_tooth_p", BlockKind::comparator, {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
+    mean("ws_pos", "φ̇s > 0", "the secondary turns forward");
     block("cmp_tooth_n", BlockKind::comparator, {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
+    mean("ws_neg", "φ̇s < 0", "the secondary turns backward");
   }
 
   void add_self_locking() {  // (6.7): M_Re = k_Re·φ̇s when φ̇s·Δφ' < 0, k_Re → ∞
@@ -357,10 +438,12 @@ class Builder {
       omit("blocks 16/17 self-locking: not self-locking");
       return;
     }
+    const Section locking(feature_, "self-locking");
     const double lock_rate = patch_.k0 * patch_.find(Setting::alpha_lock)->coefficient;
     const double band = lock_band(level_, patch_.machine.amplifier.bandwidth_hz, lock_rate);
     block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(band),
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
+    mean("lock_steep_n", "−clip(φ̇s/band)", "the secondary speed through the steep characteristic");
     // The band stays the one for the full reaction: a halved rectifier halves
     // the loop gain, which the measured decks prefer (bild6c on THE ANALOG
     // THING, perfect components: band 0.023 0.28 %, band 0.012 at the same
@@ -371,13 +454,17 @@ class Builder {
           gain == 1 ? "lock_below = min(clip, 0), lock_above = max(clip, 0)"
                     : fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): the rectifier's "
                                   "op-amp cannot swing to 1 MU plus a diode drop", gain));
-    contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
+    mean("lock_below", "min(clip, 0)", "the lock's reaction to backward motion");
+    mean("lock_above", "max(clip, 0)", "the lock's reaction to forward motion");
+    contact_comparators("engaged", "{delta2}", "δ2", "block 17, (6.7) engagement");
     if (!locks_latched()) return;
     const std::string release = fmt::format("{}", lock_release(level_));
     block("cmp_stopped_bwd", BlockKind::comparator, {"ws", "stopped_bwd"}, "-" + release,
           "lock latch release: ws > -" + release + ", backward motion stopped");
     block("cmp_stopped_fwd", BlockKind::comparator, {"ws_n", "stopped_fwd"}, "-" + release,
           "lock latch release: ws < " + release + ", forward motion stopped");
+    mean("stopped_bwd", "φ̇s > −δr", "backward motion has stopped");
+    mean("stopped_fwd", "φ̇s < δr", "forward motion has stopped");
   }
 
   /// Whether the lock's reaction is latched until the secondary has stopped (add_secondary).
@@ -401,6 +488,7 @@ class Builder {
   Level level_;
   std::set<std::string> inverted_;  ///< the signals whose inverse the contact comparators have
   std::set<std::string> staged_;
+  std::string feature_;  ///< the scene feature the parts built now belong to (Section), empty for the core
   Circuit c_;
 };
 
@@ -421,7 +509,24 @@ bool Circuit::uses(BlockKind kind) const {
   return std::any_of(blocks.begin(), blocks.end(), [&](const auto& b) { return b.block == kind; });
 }
 
+std::string Circuit::signal_of(const std::string& node) const {
+  const auto it = nodes.find(node);
+  return it == nodes.end() ? node : it->second.signal;
+}
+
+std::string Circuit::feature_of(const std::string& node) const {
+  const auto it = nodes.find(node);
+  return it == nodes.end() ? "" : it->second.feature;
+}
+
 double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : hardware_comparator_offset; }
+
+PatchOptions patch_options_for(Level level) {
+  PatchOptions o;
+  o.comparator_offset = comparator_offset(level);
+  o.lock_catch = level == Level::ideal;
+  return o;
+}
 
 double friction_band(Level level) { return level == Level::ideal ? 1e-5 : 1e-3; }
 double lock_band(Level level, double gbw_hz, double loop_rate) {

@@ -11,6 +11,7 @@
 
 namespace gearpatch {
 struct Patch;
+struct PatchOptions;
 }  // namespace gearpatch
 
 namespace gearpatch::circuit {
@@ -28,6 +29,8 @@ struct AmplifierInput {
   /// once switched_by is high and released_by low, opened once switched_by
   /// is low and released_by high, held in between.
   std::string released_by = {};
+  /// The scene feature its potentiometer serves ("damping"), empty for the core.
+  std::string feature = {};
 };
 
 /// An inverting integrator or summer of the machine, with its output node.
@@ -37,6 +40,7 @@ struct Amplifier {
   std::string out;    ///< output node
   std::vector<AmplifierInput> inputs;
   std::string comment;  ///< what it computes, with the paper's equation
+  std::string feature;  ///< the scene feature it belongs to ("damping"), empty for the core of Bild 4
 };
 
 /// A fixed-pin block from the library (dead_zone, limiter, abs, halfwave,
@@ -47,6 +51,17 @@ struct FunctionBlock {
   std::vector<std::string> nodes;  ///< in the block's pin order
   std::string parameter;           ///< value expression for its one parameter, or empty
   std::string comment;
+  std::string feature;             ///< the scene feature it belongs to, empty for the core of Bild 4
+};
+
+/// What a node carries, recorded by the builder as it creates the node: the
+/// sign bookkeeping a person patches by, and the feature of the part that drives it.
+struct NodeMeaning {
+  std::string signal;       ///< with its sign, in the paper's variables ("−Δφ̇/Δφ̇m")
+  std::string unit;         ///< the unit of the physical quantity, empty for a switch or a sign
+  double full_scale = 0;    ///< the physical value of 1 MU in `unit`, 0 where there is none
+  std::string description;  ///< in words: "relative speed, inverted"
+  std::string feature;      ///< the scene feature of the part that drives it, empty for the core
 };
 
 /// How a machine variable of the comparison is read off the deck: the node
@@ -80,6 +95,9 @@ struct Circuit {
   std::vector<std::pair<std::string, std::optional<Setting>>> initial_conditions;
   std::vector<std::string> omitted;             ///< blocks left out, with the reason
   std::map<Signal, Probe> probes;              ///< one per compared signal
+  /// node → its meaning, for the nodes that carry one of the paper's
+  /// variables, a switch signal or a reference.
+  std::map<std::string, NodeMeaning> nodes;
   double beta = 1;                              ///< machine time = β · real time
   bool autoscaled = false;                      ///< scaled from the simulated peaks (--autoscale)
   std::string scaling = "paper";                ///< the deck header's word (Patch::scaling_name)
@@ -89,6 +107,11 @@ struct Circuit {
   /// comparators, limiters and the lock's half-wave saturate by design.
   std::vector<std::string> amplifier_outputs() const;
   bool uses(BlockKind block) const;
+  /// The node's signal with its sign (NodeMeaning::signal), else the node's
+  /// name: an extra stage or an intermediate of the capped law stands for itself.
+  std::string signal_of(const std::string& node) const;
+  /// The scene feature of the part driving the node, empty for the core.
+  std::string feature_of(const std::string& node) const;
 };
 
 /// The comparator offsets δ1, δ2 for a level, in machine units. The paper sets
@@ -99,6 +122,10 @@ struct Circuit {
 /// op-amps' 1 mV offsets, or a comparator watching |Δφ'| never switches
 /// back: 5e-3 MU (50 mV).
 double comparator_offset(Level level);
+
+/// The patch options a circuit of `level` is scaled with: its comparator
+/// offsets, and the self-locking catch bounded at the ideal level.
+PatchOptions patch_options_for(Level level);
 
 /// Width of the linear band of the friction characteristic sign(φ̇) (blocks
 /// 2, 14), in machine units: inside it friction acts as a steep viscous term,

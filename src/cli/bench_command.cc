@@ -9,6 +9,7 @@
 #include "cli/command.h"
 #include "cli/options.h"
 #include "common/error.h"
+#include "common/json_text.h"
 #include "common/gnuplot.h"
 #include "common/output_set.h"
 #include "common/process.h"
@@ -83,7 +84,7 @@ void write_outputs(const bench::BenchResult& result, const po::variables_map& vm
   const std::string table = bench::to_table(result);
   std::string plot_warning;
   if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", bench::to_json(result));
+  if (outputs.has("--json")) outputs.stage("--json", json_text(bench::to_json(result)));
   if (outputs.has("--plot")) {
     try {  // the measurements stand without their picture
       outputs.stage("--plot", bench::plot_image(result, plot_as));

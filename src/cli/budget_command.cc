@@ -2,6 +2,8 @@
 #include <fmt/format.h>
 
 #include "cli/command.h"
+#include "cli/command_outputs.h"
+#include "common/json_text.h"
 #include "cli/options.h"
 #include "common/output_set.h"
 #include "common/process.h"
@@ -22,7 +24,7 @@ int run_budget(const std::vector<std::string>& args) {
   add_quality_option(options, "");
   add_machine_option(options);
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch budget SCENE [--machine M] [options]\n\n"
+  const auto file = parse_command(args, "budget", "usage: gearpatch budget SCENE [--machine M] [options]\n\n"
                        "The error budget of the hardware level before any Monte Carlo: each signal's\n"
                        "error with perfect components (every offset zero, every setting exact), and\n"
                        "the share of each component tolerance (one amplifier's offset at the\n"
@@ -34,26 +36,20 @@ int run_budget(const std::vector<std::string>& args) {
                        options,
                        {"gearpatch budget scenes/bild6c.ini --machine the-analog-thing --autoscale",
                         "gearpatch budget scenes/bild5b.ini --machine classic --json budget.json"},
-                       vm))
-    return 0;
-  const Scene scene = load_scene(single_file(vm, "budget"), chosen_machine(vm));
+                       vm);
+  if (!file) return 0;
+  const Scene scene = load_scene(*file, chosen_machine(vm));
   verify::VerifyOptions o;
   o.level = circuit::Level::hardware;
   o.autoscale = vm.count("autoscale") > 0;
   o.transient = chosen_quality(vm);
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
-  OutputSet outputs;
-  const std::string report_to = main_output(vm, {"json"});
-  if (!report_to.empty()) outputs.add("--out", report_to);
-  if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
-  const unsigned workers = vm.count("jobs") ? vm["jobs"].as<unsigned>() : runs::core_count();
-  if (workers < 1) throw Error("--jobs 0: run at least one at a time");
-  const tolerance::ErrorBudget budget = tolerance::error_budget(scene, o, workers);
+  CommandOutputs out(vm, {"json"});
+  const tolerance::ErrorBudget budget = tolerance::error_budget(scene, o, workers_option(vm));
   const std::string table = tolerance::to_table(budget);
-  if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", tolerance::to_json(budget).dump(2) + "\n");
-  outputs.commit();
-  if (report_to.empty()) std::fputs(table.c_str(), stderr);
+  if (out.set.has("--out")) out.set.stage("--out", table);
+  if (out.set.has("--json")) out.set.stage("--json", json_text(tolerance::to_json(budget)));
+  out.commit(table);
   return budget.failed.empty() ? 0 : 3;
 }
 

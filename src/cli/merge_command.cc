@@ -14,7 +14,7 @@ int run_merge(const std::vector<std::string>& args) {
       ("figures-plot", po::value<std::string>(), "each figure against the first swept key (.png or .svg)");
   add_output_options(options, "the table", "the table");
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch merge RUNDIR [options]\n\n"
+  const auto dir = parse_command(args, "merge", "usage: gearpatch merge RUNDIR [options]\n\n"
                        "Reads the results of a run folder written by `sweep --job-list` or `monte-carlo --job-list` (however its\n"
                        "jobs were run: GNU Parallel, a Slurm array, by hand) and writes the same\n"
                        "table, CSV, JSON and plots as the sweep itself. A job without a result is\n"
@@ -26,9 +26,9 @@ int run_merge(const std::vector<std::string>& args) {
                        {"gearpatch sweep scenes/bild5b.ini --set gear.stiffness=50:200:4 --job-list runs/c",
                         "parallel -S : < runs/c/jobs.txt   # ':' is this machine; --sshloginfile FILE for hosts",
                         "gearpatch merge runs/c --csv c.csv --plot c.png"},
-                       vm))
-    return 0;
-  const runs::RunFolder folder(single_file(vm, "merge", "RUNDIR"));
+                       vm, "RUNDIR");
+  if (!dir) return 0;
+  const runs::RunFolder folder(*dir);
   const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };
   const runs::Manifest manifest = folder.manifest();
   if (tolerance::is_monte_carlo(manifest.study)) {

@@ -5,6 +5,7 @@
 #include "circuit/netlist.h"
 #include "circuit/quality.h"
 #include "cli/command.h"
+#include "cli/command_outputs.h"
 #include "cli/options.h"
 #include "common/output_set.h"
 #include "common/error.h"
@@ -27,37 +28,32 @@ int run_netlist(const std::vector<std::string>& args) {
   add_machine_option(options);
   add_scaling_option(options);
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch netlist SCENE [--level ideal|hardware] [--autoscale] [--quality Q] [-o FILE.cir]\n\n"
+  const auto file = parse_command(args, "netlist", "usage: gearpatch netlist SCENE [--level ideal|hardware] [--autoscale] [--quality Q] [-o FILE.cir]\n\n"
                        "Writes the analog computer program of the scene (the paper's Bild 4) as an\n"
                        "ngspice deck, with only the blocks the scene needs; says which were left out.\n"
                        "Its header records level, scaling, β, machine and quality for verify --deck.",
                        options,
                        {"gearpatch netlist scenes/bild5a.ini -o bild5a.cir",
                         "gearpatch netlist scenes/bild5a.ini --level hardware --autoscale -o bild5a.hw.cir"},
-                       vm))
-    return 0;
-  const std::string file = single_file(vm, "netlist");
-  OutputSet outputs;  // the target checked now, before the work
-  const std::string deck_to = vm.count("out") ? vm["out"].as<std::string>() : "-";
-  outputs.add("--out", deck_to);
+                       vm);
+  if (!file) return 0;
+  CommandOutputs out(vm, {});  // the target checked now, before the work
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
-  const Scene scene = load_scene(file, chosen_machine(vm));
-  PatchOptions patch_options;
+  const Scene scene = load_scene(*file, chosen_machine(vm));
+  PatchOptions patch_options = circuit::patch_options_for(level);
   patch_options.autoscale = vm.count("autoscale") > 0;
   patch_options.check_peaks = patch_options.autoscale;
   if (paper_scaling(vm)) patch_options.method = ScalingMethod::paper;
-  patch_options.comparator_offset = circuit::comparator_offset(level);
-  patch_options.lock_catch = level == circuit::Level::ideal;
   const circuit::Circuit c = with_scene(
       scene, [&] { return circuit::build_circuit(make_patch(scene, patch_options), level); });
   // The step the scene's contact period needs, as verify takes it.
   const circuit::TransientControl control =
       circuit::scene_control(chosen_quality(vm), gear_parameters(scene), scene.duration);
   const std::string deck = circuit::render_netlist(c, control);
-  outputs.stage("--out", deck);
-  outputs.commit();
-  if (deck_to == "-") return 0;
-  std::printf("%s: %zu amplifiers, %zu function blocks, level %s\n", deck_to.c_str(),
+  out.set.stage("--out", deck);
+  out.set.commit();
+  if (out.main_to == "-") return 0;
+  std::printf("%s: %zu amplifiers, %zu function blocks, level %s\n", out.main_to.c_str(),
               c.amplifiers.size(), c.blocks.size(), std::string(level_name(level)).c_str());
   for (const auto& what : c.omitted) std::printf("  left out: %s\n", what.c_str());
   return 0;

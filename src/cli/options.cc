@@ -39,6 +39,20 @@ bool parse_arguments(const std::vector<std::string>& args, const std::string& us
   return true;
 }
 
+std::optional<std::string> parse_command(const std::vector<std::string>& args, const std::string& command,
+                                         const std::string& usage, po::options_description options,
+                                         const std::vector<std::string>& examples, po::variables_map& vm,
+                                         const std::string& what) {
+  if (!parse_arguments(args, usage, std::move(options), examples, vm)) return std::nullopt;
+  return single_file(vm, command, what);
+}
+
+unsigned workers_option(const po::variables_map& vm) {
+  const unsigned workers = vm.count("jobs") ? vm["jobs"].as<unsigned>() : runs::core_count();
+  if (workers < 1) throw Error("--jobs 0: run at least one at a time");
+  return workers;
+}
+
 std::string single_file(const po::variables_map& vm, const std::string& command, const std::string& what) {
   const auto files = vm["scene"].as<std::vector<std::string>>();
   if (files.size() != 1) throw Error(command + " takes one " + what);

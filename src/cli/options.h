@@ -1,5 +1,6 @@
 #pragma once
 #include <boost/program_options.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,17 @@ namespace po = boost::program_options;
 bool parse_arguments(const std::vector<std::string>& args, const std::string& usage,
                      po::options_description options, const std::vector<std::string>& examples,
                      po::variables_map& vm, bool scene_required = true);
+
+/// parse_arguments, then the command's one positional file (single_file):
+/// the file, or none for --help (nothing to do).
+std::optional<std::string> parse_command(const std::vector<std::string>& args, const std::string& command,
+                                         const std::string& usage, po::options_description options,
+                                         const std::vector<std::string>& examples, po::variables_map& vm,
+                                         const std::string& what = "SCENE");
+
+/// --jobs of a command whose ngspice runs share the cores: the cores unless
+/// given; Error for 0.
+unsigned workers_option(const po::variables_map& vm);
 
 /// Adds the outputs every command takes alike: -o/--out FILE for its main
 /// output (`main`, default stdout) and --json FILE; "-" is stdout for both.

@@ -1,8 +1,10 @@
 #include <cstdio>
 
 #include "cli/command.h"
+#include "cli/command_outputs.h"
 #include "cli/options.h"
 #include "common/error.h"
+#include "common/json_text.h"
 #include "common/output_set.h"
 #include "patching/machine_patch.h"
 #include "patching/patch_sheet.h"
@@ -31,7 +33,7 @@ int run_settings(const std::vector<std::string>& args) {
   add_output_options(options, "the table", "the settings");
   add_machine_option(options);
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch settings SCENE [options]\n\n"
+  const auto file = parse_command(args, "settings", "usage: gearpatch settings SCENE [options]\n\n"
                        "Amplitude and time scaling and the potentiometer settings of Table 1: every\n"
                        "scale and β solved as one constraint problem (or the paper's recipe with\n"
                        "--scaling paper), every coefficient as α·n, the dial position with the load\n"
@@ -41,13 +43,9 @@ int run_settings(const std::vector<std::string>& args) {
                        options,
                        {"gearpatch settings scenes/bild5b.ini",
                         "gearpatch settings scenes/bild5b.ini --autoscale --json bild5b.settings.json"},
-                       vm))
-    return 0;
-  const std::string file = single_file(vm, "settings");
-  OutputSet outputs;  // the target checked now, before the run
-  const std::string table_to = main_output(vm);
-  if (!table_to.empty()) outputs.add("--out", table_to);
-  if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
+                       vm);
+  if (!file) return 0;
+  CommandOutputs out(vm, {"json"});  // the targets checked now, before the run
   PatchOptions o;
   o.autoscale = vm.count("autoscale") > 0;
   if (paper_scaling(vm)) o.method = ScalingMethod::paper;
@@ -57,18 +55,17 @@ int run_settings(const std::vector<std::string>& args) {
   o.round_speeds = vm.count("exact-maxima") == 0;
   o.comparator_offset = number_option(vm, "comparator-offset", 0, 0.5, true);  // in MU, below half the unit
   if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
-  const Scene scene = load_scene(file, chosen_machine(vm));
+  const Scene scene = load_scene(*file, chosen_machine(vm));
   const Patch patch = make_patch(scene, o);
   std::string table = drive_report(scene) + to_table(patch);
   // Only for a chosen machine, so that a scene without one keeps its table.
   if (!chosen_machine(vm).empty() || scene.lines.count("machine.profile"))
     table += "\nmachine: " + patching::fit_summary(patching::patch_on_machine(patch).allocation) +
              "\n  (gearpatch patch SCENE --machine " + scene.machine.name + " writes the patch sheet)\n";
-  if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", to_json(patch));
-  outputs.commit();
-  if (table_to.empty()) std::fputs(table.c_str(), stderr);
-  if (table_to != "-")  // the table on the terminal lists them
+  if (out.set.has("--out")) out.set.stage("--out", table);
+  if (out.set.has("--json")) out.set.stage("--json", json_text(to_json(patch)));
+  out.commit(table);
+  if (out.main_to != "-")  // the table on the terminal lists them
     for (const auto& w : patch.warnings) std::fprintf(stderr, "gearpatch settings: warning: %s\n", w.c_str());
   return 0;
 }

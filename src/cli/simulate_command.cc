@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "cli/command.h"
+#include "cli/command_outputs.h"
 #include "cli/options.h"
 #include "common/error.h"
 #include "common/output_set.h"
@@ -39,19 +40,16 @@ int run_simulate(const std::vector<std::string>& args) {
        "energy and momentum balances with their residual ('-': "
        "stdout; without it, a text summary goes to stdout when --out is a file)");
   po::variables_map vm;
-  if (!parse_arguments(args, "usage: gearpatch simulate SCENE [options]\n\n"
+  const auto file = parse_command(args, "simulate", "usage: gearpatch simulate SCENE [options]\n\n"
                        "Runs the reference model of the paper's equations (6.1)-(6.10) and\n"
                        "writes the trajectory in physical units and real time.", options,
                        {"gearpatch simulate scenes/bild5b.ini -o bild5b.csv",
                         "gearpatch simulate scenes/bild6a.ini --dt 1e-4 --events bild6a.events.csv -o -"},
-                       vm))
-    return 0;
-  const std::string file = single_file(vm, "simulate");
-  OutputSet outputs;  // every target checked now, before the run
-  outputs.add("--out", vm.count("out") ? vm["out"].as<std::string>() : "-");
-  if (vm.count("events")) outputs.add("--events", vm["events"].as<std::string>());
-  if (vm.count("summary")) outputs.add("--summary", vm["summary"].as<std::string>());
-  const Scene scene = load_scene(file);
+                       vm);
+  if (!file) return 0;
+  CommandOutputs out(vm, {}, {"events", "summary"});  // every target checked now, before the run
+  OutputSet& outputs = out.set;
+  const Scene scene = load_scene(*file);
   RunSpec spec = run_spec(scene);
   if (vm.count("dt")) spec.output_step = number_option(vm, "dt", 0, std::numeric_limits<double>::max(), true);
   // Below about 1e-14 the adaptive solver's error is rounding, not its tolerance.

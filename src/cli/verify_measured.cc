@@ -4,8 +4,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "cli/command_outputs.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
+#include "common/json_text.h"
 #include "common/gnuplot.h"
 #include "common/output_set.h"
 #include "scene/scene.h"
@@ -79,29 +81,19 @@ int run_verify_measured(const po::variables_map& vm, const std::string& scene_fi
     throw Error("--level " + vm["level"].as<std::string>() + " and --measured: a recording is of the real machine "
                 "(hardware level)");
   const verify::MeasuredOptions measured = measured_options(vm);
-  OutputSet outputs;
-  const std::string report_to = main_output(vm, {"json", "plot"});
-  if (!report_to.empty()) outputs.add("--out", report_to);
-  if (vm.count("json")) outputs.add("--json", vm["json"].as<std::string>());
-  if (vm.count("plot")) outputs.add("--plot", vm["plot"].as<std::string>());
-  const std::string plot_as = vm.count("plot") ? plot_format(vm["plot"].as<std::string>()) : "";
+  CommandOutputs out(vm, {"json", "plot"});
+  const std::string plot_as = out.set.has("--plot") ? plot_format(out.set.path("--plot")) : "";
   const Scene scene = load_scene(scene_file, chosen_machine(vm));
   const verify::MeasuredVerify v = verify::verify_measured(scene, options, read_file(measured.path), measured);
   const std::string table = verify::to_table(v.result);
-  nlohmann::json json = nlohmann::json::parse(verify::to_json(v.result));
+  nlohmann::json json = verify::to_json(v.result);
   json["measured"] = measured_json(v, measured.path);
   std::vector<std::string> warnings;
-  if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", json.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  if (outputs.has("--plot")) {
-    try {
-      outputs.stage("--plot", verify::plot_image(v.result, plot_as));
-    } catch (const Error& e) {
-      warnings.push_back(fmt::format("--plot {}: not written: {}", outputs.path("--plot"), e.what()));
-    }
-  }
-  outputs.commit();
-  if (report_to.empty()) std::fputs(table.c_str(), stderr);
+  if (out.set.has("--out")) out.set.stage("--out", table);
+  if (out.set.has("--json")) out.set.stage("--json", json_text(json));
+  if (out.set.has("--plot"))
+    stage_plot(out.set, "--plot", [&] { return verify::plot_image(v.result, plot_as); }, warnings);
+  out.commit(table);
   for (const std::string& w : warnings) std::fprintf(stderr, "gearpatch verify: warning: %s\n", w.c_str());
   return v.result.passed ? 0 : 1;
 }

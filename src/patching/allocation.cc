@@ -8,40 +8,8 @@
 #include "common/error.h"
 #include "common/numbers.h"
 #include "machine/machine_file.h"
-#include "patching/signal_names.h"
 
 namespace gearpatch::patching {
-
-namespace {
-
-bool is_inverter(const circuit::Amplifier& a) {
-  return !a.integrator && a.inputs.size() == 1 && !a.inputs[0].potentiometer && a.inputs[0].weight == 1 &&
-         a.inputs[0].switched_by.empty();
-}
-
-bool is_one(double value) { return std::abs(std::abs(value) - 1.0) < 1e-12; }
-
-}  // namespace
-
-std::string signal_unit(Signal s) {
-  switch (s) {
-    case Signal::omega_p:
-    case Signal::omega_s: return "rad/s";
-    case Signal::dphi: return "rad";
-    case Signal::m0: return "N·m";
-  }
-  return "";
-}
-
-std::string_view signal_name(Signal s) {
-  switch (s) {
-    case Signal::omega_p: return "omega_p";
-    case Signal::omega_s: return "omega_s";
-    case Signal::dphi: return "dphi";
-    case Signal::m0: return "m0";
-  }
-  return "";
-}
 
 namespace {
 
@@ -71,13 +39,9 @@ class Allocator {
   }
 
  private:
-  int available(ElementKind kind) const {
-    auto it = c_.machine.elements.find(kind);
-    return it == c_.machine.elements.end() ? 0 : it->second.count;
-  }
   int free_on_first(ElementKind kind) const {
     auto it = used_.find(kind);
-    return available(kind) - (it == used_.end() ? 0 : it->second);
+    return element_count(c_.machine, kind) - (it == used_.end() ? 0 : it->second);
   }
   std::string prefix(ElementKind kind) const {
     auto it = c_.machine.elements.find(kind);
@@ -86,7 +50,7 @@ class Allocator {
 
   const Element& take(ElementKind kind, const std::string& instance, const std::string& role,
                       const std::string& feature) {
-    const int n = ++used_[kind], count = available(kind);
+    const int n = ++used_[kind], count = element_count(c_.machine, kind);
     Element e;
     e.kind = kind;
     e.machine = count > 0 ? (n - 1) / count + 1 : 0;
@@ -119,7 +83,7 @@ class Allocator {
       } else {
         labels_[node] = potentiometer(node, fmt::format("{} = {} MU from the {}", node, format_number(value),
                                                         reference), std::nullopt, std::abs(value),
-                                      std::abs(value), 1, feature_of("alpha2"));
+                                      std::abs(value), 1, c_.feature_of(node));
       }
     }
     // A drive that varies in time: a function generator of machine
@@ -128,19 +92,19 @@ class Allocator {
       labels_[node] = take(ElementKind::function_generator, node,
                            fmt::format("{}: the drive torque over machine time, linear between {} points", node,
                                        points.size()),
-                           feature_of("alpha2")).label;
+                           c_.feature_of(node)).label;
   }
 
   void amplifier(const circuit::Amplifier& amp) {
     const ElementKind kind = amp.integrator ? ElementKind::integrator : ElementKind::summer;
-    labels_[amp.out] = take(kind, amp.name, amp.comment, feature_of(amp.name)).label;
+    labels_[amp.out] = take(kind, amp.name, amp.comment, amp.feature).label;
   }
 
   /// An inverter where the machine has one free, else a summer with one input.
   void inverter(const circuit::Amplifier& amp) {
     const bool use_summer = free_on_first(ElementKind::inverter) <= 0 && free_on_first(ElementKind::summer) > 0;
     const Element& e = take(use_summer ? ElementKind::summer : ElementKind::inverter, amp.name, amp.comment,
-                            feature_of(amp.name));
+                            amp.feature);
     labels_[amp.out] = e.label;
     if (use_summer) a_.notes.push_back(fmt::format("{} serves as inverter for {} (no free inverter)", e.label, amp.name));
   }
@@ -154,7 +118,7 @@ class Allocator {
     std::optional<Setting> threshold;
     if (block.parameter.size() > 2 && block.parameter.front() == '{')
       threshold = parse_setting(block.parameter.substr(1, block.parameter.size() - 2));
-    const std::string feature = feature_of(block.name);
+    const std::string& feature = block.feature;
     std::vector<std::string> taken;
     std::string output, amplifier_output, comparator_output;
     bool own_potentiometer = false;
@@ -182,7 +146,7 @@ class Allocator {
         thresholds_[*threshold] = potentiometer(
             to_string(*threshold), fmt::format("comparator threshold {} from the −1 MU reference, into input B",
                                                to_string(*threshold)),
-            threshold, params_.at(*threshold), params_.at(*threshold), 1, feature_of(to_string(*threshold)));
+            threshold, params_.at(*threshold), params_.at(*threshold), 1, feature);
       a_.notes.push_back(fmt::format("{}: input B from {} ({} = {})", output, thresholds_[*threshold],
                                      to_string(*threshold), format_number(params_.at(*threshold))));
     }
@@ -202,7 +166,7 @@ class Allocator {
       wire.number = static_cast<int>(a_.connections.size()) + 1;
       wire.from_node = in.from;
       wire.from_label = label(in.from);
-      wire.from_signal = signal_of(in.from);
+      wire.from_signal = c_.signal_of(in.from);
       wire.to_instance = amp.name;
       wire.to_label = target.label;
       wire.input = static_cast<int>(k) + 1;
@@ -218,7 +182,7 @@ class Allocator {
                                                    fmt::format("{} into {} input {}", to_string(*in.potentiometer),
                                                                target.label, k + 1),
                                                    in.potentiometer, wire.setting, wire.loaded_setting, in.weight,
-                                                   feature_of(to_string(*in.potentiometer)));
+                                                   in.feature);
         else
           a_.notes.push_back(fmt::format("{} = 1: a plain wire into {} (weight {})", to_string(*in.potentiometer),
                                          target.label, in.weight));
@@ -242,7 +206,7 @@ class Allocator {
   /// latch); its switch lies in parallel with the engagement switch.
   void latch(Connection& wire, const circuit::AmplifierInput& in) {
     const std::string name = "latch_" + wire.to_instance + "_" + std::to_string(wire.input);
-    const std::string feature = feature_of(name);
+    const std::string& feature = in.feature;
     const bool use_summer = free_on_first(ElementKind::inverter) <= 0 && free_on_first(ElementKind::summer) > 0;
     const Element& inv = take(use_summer ? ElementKind::summer : ElementKind::inverter, name + "_reset_n",
                               fmt::format("−{} for the lock latch of {} input {}", in.released_by, wire.to_label,
@@ -283,21 +247,12 @@ class Allocator {
 
   void watches() {
     for (const auto& [signal, probe] : c_.probes)
-      a_.watches.push_back({std::string(signal_name(signal)), label(probe.node), probe.node, signal_unit(signal), probe.full_scale});
+      a_.watches.push_back(
+          {gearpatch::to_string(signal), label(probe.node), probe.node, gearpatch::unit(signal), probe.full_scale});
   }
 
   void counts() {
-    int machines = 1;
-    for (ElementKind kind : element_kinds()) {
-      const int needed = used_.count(kind) ? used_.at(kind) : 0, have = available(kind);
-      if (needed == 0 && have == 0) continue;
-      a_.counts.push_back({kind, needed, have});
-      if (needed <= have) continue;
-      a_.shortfalls.push_back(fmt::format("{}: needs {}, the machine has {} ({} short)", element_name(kind), needed,
-                                          have, needed - have));
-      machines = have == 0 || machines == 0 ? 0 : std::max(machines, (needed + have - 1) / have);
-    }
-    a_.machines_needed = machines;
+    a_.machines_needed = tally(a_, [&](ElementKind kind) { return used_.count(kind) ? used_.at(kind) : 0; });
     options();
   }
 
@@ -357,5 +312,31 @@ std::string Allocation::run_mode() const {
 }
 
 Allocation allocate(const circuit::Circuit& circuit) { return Allocator(circuit).run(); }
+
+bool is_inverter(const circuit::Amplifier& a) {
+  return !a.integrator && a.inputs.size() == 1 && !a.inputs[0].potentiometer && a.inputs[0].weight == 1 &&
+         a.inputs[0].switched_by.empty();
+}
+
+bool is_one(double value) { return std::abs(std::abs(value) - 1.0) < 1e-12; }
+
+int element_count(const MachineProfile& machine, ElementKind kind) {
+  auto it = machine.elements.find(kind);
+  return it == machine.elements.end() ? 0 : it->second.count;
+}
+
+int tally(Allocation& a, const std::function<int(ElementKind)>& needed_of) {
+  int machines = 1;
+  for (ElementKind kind : element_kinds()) {
+    const int needed = needed_of(kind), have = element_count(a.machine, kind);
+    if (needed == 0 && have == 0) continue;
+    a.counts.push_back({kind, needed, have});
+    if (needed <= have) continue;
+    a.shortfalls.push_back(fmt::format("{}: needs {}, the machine has {} ({} short)", element_name(kind), needed,
+                                       have, needed - have));
+    machines = have == 0 || machines == 0 ? 0 : std::max(machines, (needed + have - 1) / have);
+  }
+  return machines;
+}
 
 }  // namespace gearpatch::patching

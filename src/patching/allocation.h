@@ -1,4 +1,5 @@
 #pragma once
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -97,9 +98,19 @@ struct Allocation {
 /// REPF, REP or OP: the fastest repetitive mode whose OP-time range holds
 /// the run (REPF's range is a hundredth of REP's), else a single run.
 std::string run_mode(const MachineProfile& machine, double machine_seconds);
-/// "omega_p" …, and the physical unit of 1 MU of it.
-std::string_view signal_name(Signal signal);
-std::string signal_unit(Signal signal);
+
+/// A plain inverter: one direct weight-1 input, without potentiometer or switch.
+bool is_inverter(const circuit::Amplifier& amplifier);
+/// ±1 to rounding: a value the ±1 MU references give without a potentiometer.
+bool is_one(double value);
+
+/// How many elements of `kind` one machine has.
+int element_count(const MachineProfile& machine, ElementKind kind);
+
+/// Adds to the allocation's counts what each kind needs (`needed`) against
+/// what its machine has, and a shortfall for each kind short; returns the
+/// machines a chain needs for all (0: a kind the machine has none of).
+int tally(Allocation& a, const std::function<int(ElementKind)>& needed);
 
 /// Assigns the circuit's amplifiers, function blocks, potentiometers and
 /// initial values to the elements of the circuit's machine.

@@ -8,10 +8,6 @@ namespace gearpatch::patching {
 
 namespace {
 
-int available(const MachineProfile& m, ElementKind kind) {
-  auto it = m.elements.find(kind);
-  return it == m.elements.end() ? 0 : it->second.count;
-}
 
 /// An amplifier wired to more inputs of a weight than one element has.
 void input_overflows(Allocation& a, const Wiring& w) {
@@ -66,16 +62,7 @@ void options(Allocation& a, const Wiring& w) {
 void count_from(Allocation& a, const Wiring& w) {
   a.counts.clear();
   a.shortfalls.clear();
-  int machines = 1;
-  for (ElementKind kind : element_kinds()) {
-    const int needed = w.count(element_name(kind)), have = available(a.machine, kind);
-    if (needed == 0 && have == 0) continue;
-    a.counts.push_back({kind, needed, have});
-    if (needed <= have) continue;
-    a.shortfalls.push_back(fmt::format("{}: needs {}, the machine has {} ({} short)", element_name(kind), needed,
-                                       have, needed - have));
-    machines = have == 0 || machines == 0 ? 0 : std::max(machines, (needed + have - 1) / have);
-  }
+  const int machines = tally(a, [&](ElementKind kind) { return w.count(element_name(kind)); });
   a.machines_needed = machines > a.machine.chain ? 0 : machines;
   input_overflows(a, w);
   options(a, w);

@@ -12,7 +12,6 @@
 #include "common/process.h"
 #include "common/scratch_dir.h"
 #include "common/tool_run.h"
-#include "patching/signal_names.h"
 
 namespace gearpatch::patching {
 

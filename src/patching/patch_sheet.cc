@@ -5,7 +5,6 @@
 
 #include "common/numbers.h"
 #include "machine/machine_file.h"
-#include "patching/signal_names.h"
 #include "patching/wiring_json.h"
 
 namespace gearpatch::patching {
@@ -124,7 +123,7 @@ std::string to_text(const MachinePatch& p) {
          scope(w) + lines("notes", w.notes) + lines("options", a.options);
 }
 
-std::string to_json(const MachinePatch& p) {
+nlohmann::ordered_json to_json(const MachinePatch& p) {
   const Allocation& a = p.allocation;
   using nlohmann::ordered_json;
   ordered_json j;
@@ -140,7 +139,7 @@ std::string to_json(const MachinePatch& p) {
   j["notes"] = p.wiring.notes;
   j["options"] = a.options;
   j["wiring"] = wiring_json(p.wiring);
-  return j.dump(2) + "\n";
+  return j;
 }
 
 }  // namespace gearpatch::patching

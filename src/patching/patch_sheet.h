@@ -1,4 +1,5 @@
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "patching/allocation.h"
@@ -15,7 +16,8 @@ std::string to_text(const MachinePatch& patch);
 
 /// The same as JSON: machine, fits, machines_needed, counts, notes, options,
 /// and the "wiring" a run is built from (wiring_json.h).
-std::string to_json(const MachinePatch& patch);
+/// Keys in the sheet's order.
+nlohmann::ordered_json to_json(const MachinePatch& patch);
 
 /// One line for `settings`: "fits the-analog-thing: 3 of 5 integrators, …"
 /// or what is short.

@@ -8,7 +8,6 @@
 #include "common/error.h"
 #include "machine/machine_file.h"
 #include "patching/allocation.h"
-#include "patching/signal_names.h"
 #include "patching/wiring.h"
 
 namespace gearpatch::patching {
@@ -47,13 +46,6 @@ std::vector<std::string> output_jacks(const Part& p) {
 }
 
 namespace {
-
-bool is_inverter(const circuit::Amplifier& a) {
-  return !a.integrator && a.inputs.size() == 1 && !a.inputs[0].potentiometer && a.inputs[0].weight == 1 &&
-         a.inputs[0].switched_by.empty();
-}
-
-bool is_one(double value) { return std::abs(std::abs(value) - 1.0) < 1e-12; }
 
 const Jack ground{"GND", ""};
 Jack reference(double sign) { return {"REF", sign > 0 ? "+1" : "-1"}; }
@@ -101,13 +93,9 @@ class Wirer {
   }
 
  private:
-  int available(ElementKind kind) const {
-    auto it = c_.machine.elements.find(kind);
-    return it == c_.machine.elements.end() ? 0 : it->second.count;
-  }
 
   Part& take(ElementKind kind, const std::string& role, const std::string& node = "") {
-    const int n = ++used_[kind], count = available(kind);
+    const int n = ++used_[kind], count = element_count(c_.machine, kind);
     auto type = c_.machine.elements.find(kind);
     const std::string prefix =
         type == c_.machine.elements.end() || type->second.label.empty() ? element_name(kind) : type->second.label;
@@ -120,7 +108,7 @@ class Wirer {
               prefix + std::to_string(number);
     p.role = filled(role);
     p.node = node;
-    p.signal = node.empty() ? "" : signal_of(node);
+    p.signal = node.empty() ? "" : c_.signal_of(node);
     w_.parts.push_back(std::move(p));
     if (!node.empty()) driver_[node] = {w_.parts.back().label, output_jacks(w_.parts.back()).front()};
     return w_.parts.back();
@@ -212,7 +200,7 @@ class Wirer {
         driver_[node] = reference(value);
         continue;
       }
-      Part& p = take(ElementKind::potentiometer, fmt::format("{}: {}", node, signal_of(node)), node);
+      Part& p = take(ElementKind::potentiometer, fmt::format("{}: {}", node, c_.signal_of(node)), node);
       p.setting = p.dial = std::abs(value);
       p.setting_name = "alpha2_source";
       const std::string label = p.label;
@@ -228,10 +216,10 @@ class Wirer {
 
   void amplifier(const circuit::Amplifier& a) {
     ElementKind kind = a.integrator ? ElementKind::integrator : ElementKind::summer;
-    if (is_inverter(a) && used_[ElementKind::inverter] < available(ElementKind::inverter))
+    if (is_inverter(a) && used_[ElementKind::inverter] < element_count(c_.machine, ElementKind::inverter))
       kind = ElementKind::inverter;
-    else if (is_inverter(a) && used_[ElementKind::summer] >= available(ElementKind::summer) &&
-             available(ElementKind::inverter) > 0)
+    else if (is_inverter(a) && used_[ElementKind::summer] >= element_count(c_.machine, ElementKind::summer) &&
+             element_count(c_.machine, ElementKind::inverter) > 0)
       kind = ElementKind::inverter;  // on the next chained machine
     take(kind, a.comment, a.out);
   }
@@ -320,10 +308,10 @@ class Wirer {
     std::string minus = negated(b.nodes[0]);
     if (minus.empty()) {
       minus = b.nodes[0] + "_neg";
-      const bool inverter = used_[ElementKind::inverter] < available(ElementKind::inverter);
+      const bool inverter = used_[ElementKind::inverter] < element_count(c_.machine, ElementKind::inverter);
       const std::string label =
           take(inverter ? ElementKind::inverter : ElementKind::summer, "−in for the half-wave " + b.name, minus).label;
-      part(label).signal = "−(" + signal_of(b.nodes[0]) + ")";
+      part(label).signal = "−(" + c_.signal_of(b.nodes[0]) + ")";
       later_.push_back([this, b, label] { wire(out_of(b.nodes[0]), input_jack(label, 1)); });
     }
     // an output the program leaves unused takes no comparator
@@ -354,7 +342,7 @@ class Wirer {
       const std::string sum = take(ElementKind::summer, b.comment + ": " + what, node).label;
       const std::string d = take(ElementKind::diode, pos ? "half-wave: passes in > 0, anode at in"
                                                          : "half-wave: passes in < 0, cathode at in").label;
-      part(d).signal = (pos ? "max(" : "min(") + signal_of(b.nodes[0]) + ", 0)";
+      part(d).signal = (pos ? "max(" : "min(") + c_.signal_of(b.nodes[0]) + ", 0)";
       sides.emplace_back(sum, d, pos);
     }
     later_.push_back([this, b, sides] {
@@ -397,7 +385,7 @@ class Wirer {
       d.push_back(take(ElementKind::diode, i < 2 ? "upper gate: passes max(x, a)" : "lower gate: passes min(x, −a)")
                       .label);
     for (int i = 0; i < 4; ++i)
-      part(d[i]).signal = i < 2 ? "max(" + signal_of(b.nodes[0]) + ", +a)" : "min(" + signal_of(b.nodes[0]) + ", −a)";
+      part(d[i]).signal = i < 2 ? "max(" + c_.signal_of(b.nodes[0]) + ", +a)" : "min(" + c_.signal_of(b.nodes[0]) + ", −a)";
     later_.push_back([this, b, sum, d] {
       const double a = dead_zone_threshold();
       const Jack up = potentiometer(reference(1), "a", a, dial_of(Setting::a, a), "dead-zone threshold +a");
@@ -439,12 +427,20 @@ class Wirer {
   /// limiter whose band is a few hundredths of 1 MU or less: wider ones, the
   /// Stribeck generator's, are units).
   void comparator_limiter(const circuit::FunctionBlock& b) {
+    switch_on_sign(b, [] { return std::pair(reference(-1), reference(1)); });
+  }
+
+  /// A comparator of the block's input against ground whose switch passes
+  /// the first of `passes()` (made once every driver is known) while the
+  /// input is positive, else the second.
+  void switch_on_sign(const circuit::FunctionBlock& b, std::function<std::pair<Jack, Jack>()> passes) {
     const std::string label = take(ElementKind::comparator, b.comment, b.nodes[1]).label;
-    later_.push_back([this, b, label] {
+    later_.push_back([this, b, label, passes] {
+      const auto [above, below] = passes();
       wire(out_of(b.nodes[0]), {label, "A"});
       wire(ground, {label, "B"});
-      wire(reference(-1), {label, ">0"});
-      wire(reference(1), {label, "<0"});
+      wire(above, {label, ">0"});
+      wire(below, {label, "<0"});
     });
   }
 
@@ -457,8 +453,8 @@ class Wirer {
     const std::string upper = take(ElementKind::comparator, b.comment + ": in above +band gives +band").label;
     const std::string lower = take(ElementKind::comparator, b.comment + ": in below −band gives −band, else in").label;
     const std::string gain = take(ElementKind::summer, b.comment, b.nodes[1]).label;
-    part(upper).signal = "clip(" + signal_of(b.nodes[0]) + ", ±band)";
-    part(lower).signal = "max(" + signal_of(b.nodes[0]) + ", −band)";
+    part(upper).signal = "clip(" + c_.signal_of(b.nodes[0]) + ", ±band)";
+    part(lower).signal = "max(" + c_.signal_of(b.nodes[0]) + ", −band)";
     later_.push_back([this, b, upper, lower, gain] {
       const double band = std::stod(b.parameter), g = 1 / band;
       const int inputs = static_cast<int>(std::ceil(g / 10 - 1e-9));
@@ -532,7 +528,7 @@ class Wirer {
   Jack positive_sum(const std::vector<Jack>& from, const std::string& target) {
     if (from.size() == 1) return from.front();
     const Jack minus = negative_sum(from, target);
-    const bool inverter = used_[ElementKind::inverter] < available(ElementKind::inverter);
+    const bool inverter = used_[ElementKind::inverter] < element_count(c_.machine, ElementKind::inverter);
     const std::string label =
         take(inverter ? ElementKind::inverter : ElementKind::summer, "turns the sum for " + target + " round").label;
     part(label).signal = "+Σ into " + target;
@@ -559,8 +555,8 @@ class Wirer {
     const std::string sum = take(ElementKind::summer, b.comment, b.nodes[1]).label;
     const std::string d1 = take(ElementKind::diode, "passes the positive half").label;
     const std::string d2 = take(ElementKind::diode, "passes the negative half").label;
-    part(d1).signal = "max(" + signal_of(b.nodes[0]) + ", 0)";
-    part(d2).signal = "max(" + signal_of(negated(b.nodes[0])) + ", 0)";
+    part(d1).signal = "max(" + c_.signal_of(b.nodes[0]) + ", 0)";
+    part(d2).signal = "max(" + c_.signal_of(negated(b.nodes[0])) + ", 0)";
     later_.push_back([this, b, sum, d1, d2] {
       wire(out_of(b.nodes[0]), {d1, "anode"});
       wire({d1, "cathode"}, input_jack(sum, 1));
@@ -571,13 +567,7 @@ class Wirer {
 
   /// −|in|: the switch picks −in while in > 0, else in.
   void comparator_abs(const circuit::FunctionBlock& b) {
-    const std::string label = take(ElementKind::comparator, b.comment, b.nodes[1]).label;
-    later_.push_back([this, b, label] {
-      wire(out_of(b.nodes[0]), {label, "A"});
-      wire(ground, {label, "B"});
-      wire(out_of(negated(b.nodes[0])), {label, ">0"});
-      wire(out_of(b.nodes[0]), {label, "<0"});
-    });
+    switch_on_sign(b, [this, b] { return std::pair(out_of(negated(b.nodes[0])), out_of(b.nodes[0])); });
   }
 
   /// A block the machine has as a ready unit (a diode function generator), or
@@ -696,11 +686,11 @@ class Wirer {
     for (const auto& [signal, probe] : c_.probes) {
       ScopeChannel s;
       s.channel = static_cast<int>(w_.watch.size()) + 1;
-      s.signal = std::string(signal_name(signal));
+      s.signal = gearpatch::to_string(signal);
       s.at = out_of(probe.node);
       s.node = probe.node;
       s.full_scale = probe.full_scale;
-      s.unit = signal_unit(signal);
+      s.unit = gearpatch::unit(signal);
       s.volts_per_mu = w_.unit_volts;
       s.volts_per_div = one_two_five(std::clamp(probe.peak_mu, 0.05, 1.0) * w_.unit_volts / 4);
       w_.watch.push_back(s);

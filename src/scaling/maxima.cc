@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "common/enum_table.h"
 #include "common/error.h"
 #include "model/gear_model.h"
 #include "scaling/scaling_input.h"
@@ -30,21 +31,14 @@ constexpr MaximumName maximum_table[] = {
     {Maximum::torque, "torque", "M0m   N·m"},
 };
 
-const MaximumName& row(Maximum key) {
-  for (const auto& r : maximum_table)
-    if (r.key == key) return r;
-  return maximum_table[0];  // not reached: every Maximum has a row
-}
-
 }  // namespace
 
-std::string to_string(Maximum key) { return row(key).name; }
-std::string symbol(Maximum key) { return row(key).symbol; }
+std::string to_string(Maximum key) { return row_of(maximum_table, key).name; }
+std::string symbol(Maximum key) { return row_of(maximum_table, key).symbol; }
 
 std::optional<Maximum> parse_maximum(std::string_view name) {
-  for (const auto& r : maximum_table)
-    if (name == r.name) return r.key;
-  return std::nullopt;
+  const MaximumName* r = row_named(maximum_table, name);
+  return r ? std::optional(r->key) : std::nullopt;
 }
 
 std::vector<std::pair<Maximum, double>> Maxima::entries() const {

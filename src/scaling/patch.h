@@ -1,5 +1,6 @@
 #pragma once
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -140,7 +141,7 @@ double dial_setting(double setting, double weight, const MachineProfile& machine
 /// The patch as JSON: beta, k0, unit_volts, maxima, potentiometers (name,
 /// formula, coefficient, setting, weight, loaded_setting, feeds), dead_zone,
 /// delta1, delta2, unused, peaks, and the rest of the report.
-std::string to_json(const Patch& patch);
+nlohmann::json to_json(const Patch& patch);
 
 /// The patch as a table a person can patch from.
 std::string to_table(const Patch& patch);

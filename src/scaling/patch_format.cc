@@ -20,7 +20,7 @@ json optional_number(bool used, double value) { return used ? json(value) : json
 
 }  // namespace
 
-std::string to_json(const Patch& patch) {
+nlohmann::json to_json(const Patch& patch) {
   json j;
   j["scene"] = patch.scene;
   j["beta"] = patch.beta;
@@ -52,8 +52,7 @@ std::string to_json(const Patch& patch) {
   j["a_priori_peaks"] = patch.a_priori_peaks;
   j["warnings"] = patch.warnings;
   j["notes"] = patch.notes;
-  // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
-  return j.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  return j;
 }
 
 namespace {

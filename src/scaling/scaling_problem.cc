@@ -266,69 +266,79 @@ class Model {
 
   void add_coefficient(const CoefficientRequirement& c) {
     const std::string name = to_string(c.name);
-    const double amplify = pr_.amplifying_gain(), attenuate = pr_.attenuating_gain();
     std::vector<Option> opts;
     Terms one;
     for (int k = -pr_.most_stages; k <= pr_.most_stages; ++k) {
       if (k > 0 && !c.source) continue;  // a reference or limiter output is at 1 MU already
       for (int n : pr_.weights) {
-        Option o;
-        o.weight = n;
-        o.stages = k;
-        o.gain = n * std::pow(k >= 0 ? amplify : attenuate, std::abs(k));
-        o.column = lp_.add_column(fmt::format("{} n={} k={}", name, n, k), 0, 1, true);
-        one.emplace_back(o.column, 1);
-        const std::string how = stage_words(n, k);
-        Terms hi, lo;
-        append(hi, c.value.scales, c.value.beta);
-        lo = hi;
-        hi.emplace_back(o.column, big);
-        const ConstraintGroup high{ConstraintGroup::Kind::setting_high, std::nullopt, c.name};
-        const ConstraintGroup low{ConstraintGroup::Kind::setting_low, std::nullopt, c.name};
-        slack(hi, high, -1);
-        const int h = lp_.add_row(name + " high", hi, -LinearProgram::infinity,
-                                  std::log(o.gain) - c.value.constant + big + relaxed(high));
-        meanings_.push_back({h, fmt::format("{} at its largest, α = 1 {}", name, how), c.value.scales,
-                             c.value.beta, o.column, c.name, true, false});
-        lo.emplace_back(o.column, -big);
-        slack(lo, low, 1);
-        const int l = lp_.add_row(name + " low", lo,
-                                  std::log(pr_.smallest_setting * o.gain) - c.value.constant - big -
-                                      relaxed(low),
-                                  LinearProgram::infinity);
-        meanings_.push_back({l, fmt::format("{} at its smallest, α = {:g} {}", name, pr_.smallest_setting, how),
-                             c.value.scales, c.value.beta, o.column, c.name});
-        if (k > 0) {  // the stages' output, the source amplified, stays within the unit
-          const double bound = std::log(pr_.bounds.at(c.source->peak));
-          const int s = lp_.add_row(name + " stage", {{u_.at(c.source->scale), -1}, {o.column, big}},
-                                    -LinearProgram::infinity,
-                                    -std::log1p(pr_.headroom) - k * std::log(amplify) - bound + big);
-          meanings_.push_back({s, fmt::format("the stages in front of {} at the unit", name),
-                               {{c.source->scale, 1}}, 0, o.column, c.name, false, true});
-        }
-        opts.push_back(o);
+        opts.push_back(option_at(c, name, n, k));
+        one.emplace_back(opts.back().column, 1);
       }
     }
-    {  // below every range: dialled as it is (the paper's way), the costliest choice
-      const int n = *std::min_element(pr_.weights.begin(), pr_.weights.end());
-      Option o;
-      o.weight = n;
-      o.stages = 0;
-      o.gain = n;
-      o.below_range = true;
-      o.column = lp_.add_column(name + " below range", 0, 1, true);
-      one.emplace_back(o.column, 1);
-      Terms hi;
-      append(hi, c.value.scales, c.value.beta);
-      hi.emplace_back(o.column, big);
-      const int h = lp_.add_row(name + " below", hi, -LinearProgram::infinity,
-                                std::log(pr_.smallest_setting * n) - c.value.constant + big);
-      meanings_.push_back({h, fmt::format("{} below α_min at weight {}", name, n), c.value.scales, c.value.beta,
-                           o.column, c.name});
-      opts.push_back(o);
-    }
+    opts.push_back(below_range(c, name));
+    one.emplace_back(opts.back().column, 1);
     lp_.add_row(name + " one choice", one, 1, 1);
     options_.push_back(std::move(opts));
+  }
+
+  /// The coefficient dialled at weight n behind k stages (amplifying k > 0,
+  /// attenuating k < 0): its column, and the rows that hold its setting
+  /// within [α_min, 1] and the stages' output within the unit.
+  Option option_at(const CoefficientRequirement& c, const std::string& name, int n, int k) {
+    const double amplify = pr_.amplifying_gain(), attenuate = pr_.attenuating_gain();
+    Option o;
+    o.weight = n;
+    o.stages = k;
+    o.gain = n * std::pow(k >= 0 ? amplify : attenuate, std::abs(k));
+    o.column = lp_.add_column(fmt::format("{} n={} k={}", name, n, k), 0, 1, true);
+    const std::string how = stage_words(n, k);
+    Terms hi, lo;
+    append(hi, c.value.scales, c.value.beta);
+    lo = hi;
+    hi.emplace_back(o.column, big);
+    const ConstraintGroup high{ConstraintGroup::Kind::setting_high, std::nullopt, c.name};
+    const ConstraintGroup low{ConstraintGroup::Kind::setting_low, std::nullopt, c.name};
+    slack(hi, high, -1);
+    const int h = lp_.add_row(name + " high", hi, -LinearProgram::infinity,
+                              std::log(o.gain) - c.value.constant + big + relaxed(high));
+    meanings_.push_back({h, fmt::format("{} at its largest, α = 1 {}", name, how), c.value.scales,
+                         c.value.beta, o.column, c.name, true, false});
+    lo.emplace_back(o.column, -big);
+    slack(lo, low, 1);
+    const int l = lp_.add_row(name + " low", lo,
+                              std::log(pr_.smallest_setting * o.gain) - c.value.constant - big -
+                                  relaxed(low),
+                              LinearProgram::infinity);
+    meanings_.push_back({l, fmt::format("{} at its smallest, α = {:g} {}", name, pr_.smallest_setting, how),
+                         c.value.scales, c.value.beta, o.column, c.name});
+    if (k > 0) {  // the stages' output, the source amplified, stays within the unit
+      const double bound = std::log(pr_.bounds.at(c.source->peak));
+      const int s = lp_.add_row(name + " stage", {{u_.at(c.source->scale), -1}, {o.column, big}},
+                                -LinearProgram::infinity,
+                                -std::log1p(pr_.headroom) - k * std::log(amplify) - bound + big);
+      meanings_.push_back({s, fmt::format("the stages in front of {} at the unit", name),
+                           {{c.source->scale, 1}}, 0, o.column, c.name, false, true});
+    }
+    return o;
+  }
+
+  /// Below every range: dialled as it is (the paper's way), the costliest choice.
+  Option below_range(const CoefficientRequirement& c, const std::string& name) {
+    const int n = *std::min_element(pr_.weights.begin(), pr_.weights.end());
+    Option o;
+    o.weight = n;
+    o.stages = 0;
+    o.gain = n;
+    o.below_range = true;
+    o.column = lp_.add_column(name + " below range", 0, 1, true);
+    Terms hi;
+    append(hi, c.value.scales, c.value.beta);
+    hi.emplace_back(o.column, big);
+    const int h = lp_.add_row(name + " below", hi, -LinearProgram::infinity,
+                              std::log(pr_.smallest_setting * n) - c.value.constant + big);
+    meanings_.push_back({h, fmt::format("{} below α_min at weight {}", name, n), c.value.scales, c.value.beta,
+                         o.column, c.name});
+    return o;
   }
 
   static std::string stage_words(int n, int k) {
@@ -447,40 +457,41 @@ std::string coefficient_key(Setting s) {
   }
 }
 
-Conflict describe(const ScalingProblem& pr, const ConstraintGroup& group, double factor) {
-  using Kind = ConstraintGroup::Kind;
-  Conflict c{group.name(), group, factor, "", ""};
-  const std::string f = fmt::format("{:.4g}", factor);
-  if (group.kind == Kind::peak) {
-    const std::string key = to_string(*group.signal);
-    c.scene_key = "maxima." + key;
-    const double bound = pr.bounds.at(*group.signal);
+using Kind = ConstraintGroup::Kind;
+
+/// A signal that would have to run over its peak bound or sink below the floor.
+void describe_level(const ScalingProblem& pr, const ConstraintGroup& group, const std::string& f, Conflict& c) {
+  const std::string key = to_string(*group.signal);
+  c.scene_key = "maxima." + key;
+  if (group.kind == Kind::peak)
     c.sentence = fmt::format(
         "{} peaks at up to {:.4g} and must stay within 1/(1 + headroom) of the machine unit: it would have to "
         "run {}× over (a machine unit {}× larger, or a scene in which {} peaks {}× lower)",
-        key, bound, f, f, key, f);
-  } else if (group.kind == Kind::floor) {
-    const std::string key = to_string(*group.signal);
-    c.scene_key = "maxima." + key;
+        key, pr.bounds.at(*group.signal), f, f, key, f);
+  else
     c.sentence = fmt::format(
         "{} must stay above {:g} MU of the machine unit (below it offsets and noise swamp it), but would have to "
         "sink {}× lower (a machine whose lowest useful level is {}× lower would do)", key, pr.lowest_level, f, f);
-  } else if (group.kind == Kind::beta_oscillation) {
-    c.scene_key = "gear.stiffness";
+}
+
+/// A limit of β: the contact oscillation, the amplifiers' bandwidth, the self-locking catch.
+void describe_beta(const ScalingProblem& pr, const ConstraintGroup& group, const std::string& f, double factor,
+                   Conflict& c) {
+  c.scene_key = group.kind == Kind::beta_oscillation || group.kind == Kind::beta_bandwidth
+                    ? "gear.stiffness" : "friction.self_locking";
+  if (group.kind == Kind::beta_oscillation)
     c.sentence = fmt::format(
         "the contact oscillation must stay within {:g}·k0 rad/s of machine time (β >= {:.4g}): β would have to "
         "be {}× smaller (a machine {}× faster, or a coupling {:.4g}× softer)",
         max_machine_frequency_per_k0, pr.beta_for_oscillation, f, f, factor * factor);
-  } else if (group.kind == Kind::beta_bandwidth) {
-    c.scene_key = "gear.stiffness";
+  else if (group.kind == Kind::beta_bandwidth)
     c.sentence = fmt::format(
         "the contact oscillation sqrt(c/Θ) must stay within what the machine's amplifiers follow, {:.4g} rad/s of "
         "machine time (1 % of a radian of lag per amplifier at their gain-bandwidth, and their slew over a full "
         "unit), so β >= {:.4g}: β would have to be {}× smaller (amplifiers {}× faster, or a coupling {:.4g}× "
         "softer)",
         pr.amplifier_frequency, pr.beta_for_bandwidth, f, f, factor * factor);
-  } else if (group.kind == Kind::lock_catch) {
-    c.scene_key = "friction.self_locking";
+  else if (group.kind == Kind::lock_catch)
     c.sentence = fmt::format(
         "the self-locking catch must stop the secondary (peak speed {:.4g} rad/s) within {:g} % of M0m as spring "
         "torque with the strongest lock reaction the machine dials (weight {:g}, α = 1), so β·φ̇sm·M0m must be at "
@@ -488,33 +499,49 @@ Conflict describe(const ScalingProblem& pr, const ConstraintGroup& group, double
         "{:.4g}× slower)",
         pr.bounds.at(Maximum::speed_secondary), 100 * lock_catch_error, pr.amplifying_gain(), pr.lock_catch_torque,
         f, f, std::sqrt(factor));
-  } else if (group.kind == Kind::beta_lock) {
-    c.scene_key = "friction.self_locking";
+  else
     c.sentence = fmt::format(
         "the self-locking reaction must catch the load within 0.1 % of the run (β >= {:.4g}): β would have to "
         "be {}× smaller (a machine whose integrators are {}× faster)", pr.beta_for_lock, f, f);
-  } else {
-    const bool low = group.kind == Kind::setting_low;
-    const std::string name = to_string(*group.setting);
-    const auto setting = group.setting;
-    std::string formula;
-    for (const auto& r : pr.coefficients)
-      if (r.name == setting) formula = r.formula;
-    c.scene_key = setting ? coefficient_key(*setting) : "";
-    const double amplify = pr.amplifying_gain(), attenuate = pr.attenuating_gain();
-    c.sentence =
-        low ? fmt::format("{} = {} must be at least {:.4g} (α_min = {:g} at the smallest weight behind {} "
-                          "attenuating stages), and the signals' peak bounds and β's limits hold it {}× "
-                          "lower: make {} {}× larger (scene key {}), or use a machine with α_min {}× smaller",
-                          name, formula,
-                          pr.smallest_setting * *std::min_element(pr.weights.begin(), pr.weights.end()) *
-                              std::pow(attenuate, pr.most_stages),
-                          pr.smallest_setting, pr.most_stages, f, formula, f, c.scene_key, f)
-            : fmt::format("{} = {} must be at most {:.4g} (the largest weight behind {} amplifying stages), and "
-                          "the signals' peak bounds and β's limits hold it {}× higher: make {} {}× smaller "
-                          "(scene key {}), or use a machine with weights {}× larger",
-                          name, formula, amplify * std::pow(amplify, pr.most_stages), pr.most_stages, f,
-                          formula, f, c.scene_key, f);
+}
+
+/// A coefficient beyond what the machine dials, at its largest or its smallest.
+void describe_setting(const ScalingProblem& pr, const ConstraintGroup& group, const std::string& f, Conflict& c) {
+  const bool low = group.kind == Kind::setting_low;
+  const std::string name = to_string(*group.setting);
+  const auto setting = group.setting;
+  std::string formula;
+  for (const auto& r : pr.coefficients)
+    if (r.name == setting) formula = r.formula;
+  c.scene_key = setting ? coefficient_key(*setting) : "";
+  const double amplify = pr.amplifying_gain(), attenuate = pr.attenuating_gain();
+  c.sentence =
+      low ? fmt::format("{} = {} must be at least {:.4g} (α_min = {:g} at the smallest weight behind {} "
+                        "attenuating stages), and the signals' peak bounds and β's limits hold it {}× "
+                        "lower: make {} {}× larger (scene key {}), or use a machine with α_min {}× smaller",
+                        name, formula,
+                        pr.smallest_setting * *std::min_element(pr.weights.begin(), pr.weights.end()) *
+                            std::pow(attenuate, pr.most_stages),
+                        pr.smallest_setting, pr.most_stages, f, formula, f, c.scene_key, f)
+          : fmt::format("{} = {} must be at most {:.4g} (the largest weight behind {} amplifying stages), and "
+                        "the signals' peak bounds and β's limits hold it {}× higher: make {} {}× smaller "
+                        "(scene key {}), or use a machine with weights {}× larger",
+                        name, formula, amplify * std::pow(amplify, pr.most_stages), pr.most_stages, f,
+                        formula, f, c.scene_key, f);
+}
+
+Conflict describe(const ScalingProblem& pr, const ConstraintGroup& group, double factor) {
+  Conflict c{group.name(), group, factor, "", ""};
+  const std::string f = fmt::format("{:.4g}", factor);
+  switch (group.kind) {
+    case Kind::peak:
+    case Kind::floor: describe_level(pr, group, f, c); break;
+    case Kind::beta_oscillation:
+    case Kind::beta_bandwidth:
+    case Kind::lock_catch:
+    case Kind::beta_lock: describe_beta(pr, group, f, factor, c); break;
+    case Kind::setting_high:
+    case Kind::setting_low: describe_setting(pr, group, f, c); break;
   }
   return c;
 }

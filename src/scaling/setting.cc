@@ -2,11 +2,17 @@
 
 #include <utility>
 
+#include "common/enum_table.h"
+
 namespace gearpatch {
 namespace {
 
 /// The one table of the settings' names, in the enum's order.
-constexpr std::pair<Setting, const char*> setting_table[] = {
+struct SettingName {
+  Setting key;
+  const char* name;
+};
+constexpr SettingName setting_table[] = {
     {Setting::alpha1, "alpha1"},   {Setting::alpha2, "alpha2"},
     {Setting::alpha3, "alpha3"},   {Setting::alpha4, "alpha4"},
     {Setting::alpha5, "alpha5"},   {Setting::alpha6, "alpha6"},
@@ -25,16 +31,11 @@ constexpr std::pair<Setting, const char*> setting_table[] = {
 
 }  // namespace
 
-std::string to_string(Setting setting) {
-  for (const auto& [s, name] : setting_table)
-    if (s == setting) return name;
-  return "?";  // not reached: every Setting has a row
-}
+std::string to_string(Setting setting) { return row_of(setting_table, setting).name; }
 
 std::optional<Setting> parse_setting(std::string_view name) {
-  for (const auto& [s, text] : setting_table)
-    if (name == text) return s;
-  return std::nullopt;
+  const SettingName* r = row_named(setting_table, name);
+  return r ? std::optional(r->key) : std::nullopt;
 }
 
 bool is_initial_value(Setting s) {

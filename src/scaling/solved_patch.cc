@@ -122,7 +122,11 @@ Maxima peak_bounds(const ScalingInput& s) {
   return m;
 }
 
-void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* run, Patch& patch) {
+namespace {
+
+/// The bounds the scaling is solved for: the a-priori ones, or under
+/// --autoscale the reference's simulated peaks.
+Maxima scaling_bounds(const ScalingInput& s, const PatchOptions& o, const PeakRun* run, Patch& patch) {
   if (!(o.headroom >= 0 && o.headroom < 10)) throw Error("the headroom must be in [0, 10]");
   Maxima bounds = peak_bounds(s);
   patch.a_priori = bounds;
@@ -135,24 +139,33 @@ void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* ru
     patch.autoscaled = true;
     patch.notes.push_back("autoscale: the scaling is solved again with every simulated peak as the bound");
   }
+  return bounds;
+}
+
+/// The scaling solved over k0 for `bounds`; under --autoscale never worse
+/// than without it: where the simulated peaks admit none, the a-priori
+/// bounds (which then become `bounds`) fit.
+std::pair<ScalingSolution, ScalingInput> solve_for(const ScalingInput& s, const PatchOptions& o, const PeakRun* run,
+                                                   Maxima& bounds, Patch& patch) {
+  if (!patch.autoscaled) return solve_over_k0(s, bounds, o, std::nullopt);
   // The self-locking catch: under --autoscale the fastest secondary the
   // reference's lock stops (none: no catch to bound), else the φ̇s bound.
   std::optional<double> catch_speed;
-  if (patch.autoscaled && o.lock_catch) catch_speed = run->peaks->lock_stops ? run->peaks->catch_speed : 0.0;
-  auto solved = [&]() {
-    if (!patch.autoscaled) return solve_over_k0(s, bounds, o, std::nullopt);
-    try {
-      return solve_over_k0(s, bounds, o, catch_speed);
-    } catch (const Error& e) {  // never worse than without --autoscale: the a-priori bounds fit
-      if (e.kind() != Error::Kind::input) throw;
-      patch.notes.push_back(std::string("autoscale: the simulated peaks admit no scaling (") + e.what() +
-                            "); solved with the a-priori bounds instead");
-      patch.autoscaled = false;
-      bounds = patch.a_priori;
-      return solve_over_k0(s, bounds, o, std::nullopt);
-    }
-  };
-  auto [solution, in] = solved();
+  if (o.lock_catch) catch_speed = run->peaks->lock_stops ? run->peaks->catch_speed : 0.0;
+  try {
+    return solve_over_k0(s, bounds, o, catch_speed);
+  } catch (const Error& e) {
+    if (e.kind() != Error::Kind::input) throw;
+    patch.notes.push_back(std::string("autoscale: the simulated peaks admit no scaling (") + e.what() +
+                          "); solved with the a-priori bounds instead");
+    patch.autoscaled = false;
+    bounds = patch.a_priori;
+    return solve_over_k0(s, bounds, o, std::nullopt);
+  }
+}
+
+/// β, k0 and the scales of the solution, each with what fixed it.
+void take_solution(ScalingSolution solution, const ScalingInput& in, Maxima bounds, Patch& patch) {
   patch.machine = in.machine;
   patch.k0 = in.machine.integrator_constant;
   patch.beta = solution.beta;
@@ -166,9 +179,11 @@ void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* ru
     patch.maxima.basis[key] = fmt::format("{:.6g} × {:.4g}, bound from {}", bounds.at(key), scale / bounds.at(key),
                                           bounds.basis[key]);
   }
-  Table1 t = table1(in, patch.maxima);
-  std::stable_sort(t.entries.begin(), t.entries.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  if (s.gear.self_locking) dial_strongest_lock(in.machine, patch.beta, t);
+}
+
+/// A potentiometer per coefficient of Table 1, at the weight and stages the solution chose.
+void dial_coefficients(const Table1& t, const ScalingSolution& solution, const ScalingInput& in,
+                       const ScalingInput& s, Patch& patch) {
   ScalingProblem shape;
   shape.weights = in.machine.weights;
   shape.smallest_setting = in.machine.smallest_setting;
@@ -191,15 +206,30 @@ void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* ru
       patch.notes.push_back(fmt::format("{}: {:.6g} is beyond what one potentiometer reaches, so it has {}",
                                         to_string(c.name), choice->value, stage_words(patch.potentiometers.back())));
   }
+}
+
+/// An explicit β: the machine's limits on the contact oscillation become warnings.
+void explicit_beta_warnings(const Table1& t, const ScalingInput& s, const ScalingInput& in, Patch& patch) {
+  std::vector<IntegratorRate> rates;
+  for (const auto& c : t.entries)
+    if (c.kind == CoefficientKind::integrator) rates.push_back({c.name, c.rate});
+  const auto ts = choose_time_scale(rates, contact_frequency(s.gear), in.machine, patch.beta);
+  for (const auto& w : ts.warnings)
+    if (w.find("contact oscillation") != std::string::npos) patch.warnings.push_back(w);
+}
+
+}  // namespace
+
+void solve_patch(const ScalingInput& s, const PatchOptions& o, const PeakRun* run, Patch& patch) {
+  Maxima bounds = scaling_bounds(s, o, run, patch);
+  const auto [solution, in] = solve_for(s, o, run, bounds, patch);
+  take_solution(solution, in, bounds, patch);
+  Table1 t = table1(in, patch.maxima);
+  std::stable_sort(t.entries.begin(), t.entries.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  if (s.gear.self_locking) dial_strongest_lock(in.machine, patch.beta, t);
+  dial_coefficients(t, solution, in, s, patch);
   patch.unused = t.unused;
-  if (o.beta || s.machine.time_scale) {  // an explicit β: the machine's limits become warnings
-    std::vector<IntegratorRate> rates;
-    for (const auto& c : t.entries)
-      if (c.kind == CoefficientKind::integrator) rates.push_back({c.name, c.rate});
-    const auto ts = choose_time_scale(rates, contact_frequency(s.gear), in.machine, patch.beta);
-    for (const auto& w : ts.warnings)
-      if (w.find("contact oscillation") != std::string::npos) patch.warnings.push_back(w);
-  }
+  if (o.beta || s.machine.time_scale) explicit_beta_warnings(t, s, in, patch);
   if (run && (o.check_peaks || o.autoscale)) check_peaks(s, o, *run, patch);
 }
 

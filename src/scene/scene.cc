@@ -21,72 +21,83 @@
 
 namespace gearpatch {
 
+namespace {
+
+/// Every key a scene may hold, with its line of --help-scene.
+constexpr std::pair<std::string_view, std::string_view> scene_key_table[] = {
+    {"name", "scene name (default: the file's stem)"},
+    {"gear.inertia_primary", "Θp, kg·m², > 0"},
+    {"gear.inertia_secondary", "Θs, kg·m², referred to the primary shaft, > 0"},
+    {"gear.stiffness", "c, N·m/rad, > 0"},
+    {"gear.restitution", "k in [0, 1] (give this or damping)"},
+    {"gear.damping", "d, N·m·s/rad, >= 0 (give this or restitution)"},
+    {"gear.backlash", "2ε, total play, >= 0, rad, or with its unit: 0.5 deg, 30 arcmin (default 0)"},
+    {"friction.bearing_primary", "k_Rp, N·m, >= 0 (default 0)"},
+    {"friction.bearing_secondary", "k_Rs, N·m, >= 0 (default 0)"},
+    {"friction.mesh_efficiency", "η_z in (0, 1] (default 1: no tooth friction)"},
+    {"friction.self_locking", "true|false (default false)"},
+    {"drive.torque", "M_a, N·m on the primary (default 0)"},
+    {"drive.load_torque", "N·m on the secondary, opposing positive rotation (default 0)"},
+    {"drive.rated_torque", "M_am from the drive's data, N·m, > 0 (optional)"},
+    {"drive.rated_speed", "φ̇pm = φ̇sm from the drive's data, rad/s or rpm, > 0 (optional)"},
+    {"initial.speed_primary", "φ̇p(0), rad/s, or with its unit: deg/s, rpm (default 0)"},
+    {"initial.speed_secondary", "φ̇s(0), rad/s, or with its unit: deg/s, rpm (default 0)"},
+    {"initial.twist", "Δφ(0) = φp − φs, rad, or with its unit: deg (default 0)"},
+    {"run.duration", "s of real time, > 0"},
+    {"run.output_step", "s between output rows, > 0 (default duration/2000)"},
+    {"maxima.drive_torque", "override M_am, N·m, > 0"},
+    {"maxima.speed_primary", "override φ̇pm, rad/s, > 0"},
+    {"maxima.speed_secondary", "override φ̇sm, rad/s, > 0"},
+    {"maxima.relative_speed", "override Δφ̇m, rad/s, > 0"},
+    {"maxima.contact_twist", "override Δφ'm, rad, > 0"},
+    {"maxima.twist", "override Δφm, rad, > 0"},
+    {"maxima.torque", "override M0m, N·m, > 0"},
+    {"machine.profile", "the machine: a shipped profile (the-analog-thing, model-1, classic, generic) or a "
+                        "profile file, relative to the scene (default generic); the machine.* keys below override it"},
+    {"machine.unit", "volts per machine unit, 0.1 … 1e3 (default 10)"},
+    {"machine.time_scale", "β (machine time = β·real time), 1e-6 … 1e6, or auto (default)"},
+    {"machine.integrator_constant", "k0, 1/s at weight 1, 1e-3 … 1e6 (default 1)"},
+    {"machine.input_resistance", "ohms of a weight-1 input, 1e3 … 1e9 (default 1e6)"},
+    {"machine.potentiometer_resistance", "ohms, 10 … 1e8 (default 1e4)"},
+    {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
+    // What a drive engineer brings: values in each shaft's own
+    // units, referred to the primary by the tool; drive profiles; motor line.
+    {"gear.contact_law", "paper|capped (default paper): capped is Modelica's ElastoBacklash, the damping torque capped at the spring torque and no pull; k is inverted for the law chosen"},
+    {"friction.characteristic", "coulomb|stribeck (default coulomb; add viscous_* for Coulomb + viscous): with stribeck, bearing_* are the break-away levels k_S"},
+    {"friction.sliding_primary", "k_C, N·m, the primary's sliding level at high speed, 0 <= k_C <= bearing_primary (stribeck)"},
+    {"friction.sliding_secondary", "k_C, N·m referred, the secondary's sliding level, 0 <= k_C <= bearing_secondary (stribeck)"},
+    {"friction.stribeck_speed", "φ̇_S, rad/s or rpm, > 0: the level falls as k_C + (k_S − k_C)·exp(−|φ̇|/φ̇_S) (stribeck)"},
+    {"gear.stages", "file of [stage] stiffness, damping sections referred to the primary (as for `gearpatch reduce`; path relative to the scene): c and d of the equivalent gear by (2.8), instead of gear.stiffness and restitution/damping"},
+    {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
+    {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
+    {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
+    {"load.backlash", "total play at the load shaft, rad or deg, >= 0: 2ε = i·play (instead of gear.backlash)"},
+    {"load.bearing_friction", "N·m on the load shaft, >= 0: k_Rs = M/i (instead of friction.bearing_secondary)"},
+    {"load.torque", "N·m on the load shaft: M_L = M/i (instead of drive.load_torque)"},
+    {"load.viscous_friction", "N·m·s/rad on the load shaft, >= 0: b_s = b/i² (instead of friction.viscous_secondary)"},
+    {"load.speed", "initial speed of the load shaft, rad/s or rpm: φ̇s(0) = i·speed (instead of initial.speed_secondary)"},
+    {"drive.load", "active|reactive (default active): a reactive load resists motion like friction and never drives the shaft"},
+    {"drive.profile", "constant|step|ramp|table|motor (default constant): how M_a varies"},
+    {"drive.step_time", "s, >= 0: profile step, M_a = drive.torque before, drive.step_torque from then on"},
+    {"drive.step_torque", "N·m: profile step, M_a after drive.step_time"},
+    {"drive.ramp_start", "s, >= 0 (default 0): profile ramp, M_a = drive.torque until then"},
+    {"drive.ramp_end", "s, > ramp_start: profile ramp, M_a linear from drive.torque to drive.ramp_torque"},
+    {"drive.ramp_torque", "N·m: profile ramp, M_a from drive.ramp_end on"},
+    {"drive.table", "file of 'time, torque' lines (s, N·m; linear between, constant outside; path relative to the scene; at most 100000 rows, values as the scene's): profile table"},
+    {"drive.stall_torque", "M_stall, N·m, > 0: profile motor, M_a = M_stall·(1 − φ̇p/φ̇_noload)"},
+    {"drive.no_load_speed", "φ̇_noload, rad/s or rpm, > 0: profile motor"},
+    {"friction.viscous_primary", "b_p, N·m·s/rad, >= 0 (default 0): M = b_p·φ̇p"},
+    {"friction.viscous_secondary", "b_s, N·m·s/rad referred to the primary, >= 0 (default 0)"},
+};
+
+}  // namespace
+
 const std::map<std::string, std::string>& scene_keys() {
-  static const std::map<std::string, std::string> keys = {
-      {"name", "scene name (default: the file's stem)"},
-      {"gear.inertia_primary", "Θp, kg·m², > 0"},
-      {"gear.inertia_secondary", "Θs, kg·m², referred to the primary shaft, > 0"},
-      {"gear.stiffness", "c, N·m/rad, > 0"},
-      {"gear.restitution", "k in [0, 1] (give this or damping)"},
-      {"gear.damping", "d, N·m·s/rad, >= 0 (give this or restitution)"},
-      {"gear.backlash", "2ε, total play, >= 0, rad, or with its unit: 0.5 deg, 30 arcmin (default 0)"},
-      {"friction.bearing_primary", "k_Rp, N·m, >= 0 (default 0)"},
-      {"friction.bearing_secondary", "k_Rs, N·m, >= 0 (default 0)"},
-      {"friction.mesh_efficiency", "η_z in (0, 1] (default 1: no tooth friction)"},
-      {"friction.self_locking", "true|false (default false)"},
-      {"drive.torque", "M_a, N·m on the primary (default 0)"},
-      {"drive.load_torque", "N·m on the secondary, opposing positive rotation (default 0)"},
-      {"drive.rated_torque", "M_am from the drive's data, N·m, > 0 (optional)"},
-      {"drive.rated_speed", "φ̇pm = φ̇sm from the drive's data, rad/s or rpm, > 0 (optional)"},
-      {"initial.speed_primary", "φ̇p(0), rad/s, or with its unit: deg/s, rpm (default 0)"},
-      {"initial.speed_secondary", "φ̇s(0), rad/s, or with its unit: deg/s, rpm (default 0)"},
-      {"initial.twist", "Δφ(0) = φp − φs, rad, or with its unit: deg (default 0)"},
-      {"run.duration", "s of real time, > 0"},
-      {"run.output_step", "s between output rows, > 0 (default duration/2000)"},
-      {"maxima.drive_torque", "override M_am, N·m, > 0"},
-      {"maxima.speed_primary", "override φ̇pm, rad/s, > 0"},
-      {"maxima.speed_secondary", "override φ̇sm, rad/s, > 0"},
-      {"maxima.relative_speed", "override Δφ̇m, rad/s, > 0"},
-      {"maxima.contact_twist", "override Δφ'm, rad, > 0"},
-      {"maxima.twist", "override Δφm, rad, > 0"},
-      {"maxima.torque", "override M0m, N·m, > 0"},
-      {"machine.profile", "the machine: a shipped profile (the-analog-thing, model-1, classic, generic) or a "
-                          "profile file, relative to the scene (default generic); the machine.* keys below override it"},
-      {"machine.unit", "volts per machine unit, 0.1 … 1e3 (default 10)"},
-      {"machine.time_scale", "β (machine time = β·real time), 1e-6 … 1e6, or auto (default)"},
-      {"machine.integrator_constant", "k0, 1/s at weight 1, 1e-3 … 1e6 (default 1)"},
-      {"machine.input_resistance", "ohms of a weight-1 input, 1e3 … 1e9 (default 1e6)"},
-      {"machine.potentiometer_resistance", "ohms, 10 … 1e8 (default 1e4)"},
-      {"machine.supply", "± supply volts of the hardware op-amps, > unit, <= 1e4 (default 15)"},
-      // What a drive engineer brings: values in each shaft's own
-      // units, referred to the primary by the tool; drive profiles; motor line.
-      {"gear.contact_law", "paper|capped (default paper): capped is Modelica's ElastoBacklash, the damping torque capped at the spring torque and no pull; k is inverted for the law chosen"},
-      {"friction.characteristic", "coulomb|stribeck (default coulomb; add viscous_* for Coulomb + viscous): with stribeck, bearing_* are the break-away levels k_S"},
-      {"friction.sliding_primary", "k_C, N·m, the primary's sliding level at high speed, 0 <= k_C <= bearing_primary (stribeck)"},
-      {"friction.sliding_secondary", "k_C, N·m referred, the secondary's sliding level, 0 <= k_C <= bearing_secondary (stribeck)"},
-      {"friction.stribeck_speed", "φ̇_S, rad/s or rpm, > 0: the level falls as k_C + (k_S − k_C)·exp(−|φ̇|/φ̇_S) (stribeck)"},
-      {"gear.stages", "file of [stage] stiffness, damping sections referred to the primary (as for `gearpatch reduce`; path relative to the scene): c and d of the equivalent gear by (2.8), instead of gear.stiffness and restitution/damping"},
-      {"gear.ratio", "i = φ̇p/φ̇load, the speed of the primary (motor) shaft over that of the load shaft, > 0 (default 1)"},
-      {"load.inertia", "J, kg·m², on the load shaft, > 0: Θs = J/i² (instead of gear.inertia_secondary)"},
-      {"load.stiffness", "N·m/rad, torsional stiffness of the coupling measured at the load shaft, > 0: c = c_load/i² (instead of gear.stiffness)"},
-      {"load.backlash", "total play at the load shaft, rad or deg, >= 0: 2ε = i·play (instead of gear.backlash)"},
-      {"load.bearing_friction", "N·m on the load shaft, >= 0: k_Rs = M/i (instead of friction.bearing_secondary)"},
-      {"load.torque", "N·m on the load shaft: M_L = M/i (instead of drive.load_torque)"},
-      {"load.viscous_friction", "N·m·s/rad on the load shaft, >= 0: b_s = b/i² (instead of friction.viscous_secondary)"},
-      {"load.speed", "initial speed of the load shaft, rad/s or rpm: φ̇s(0) = i·speed (instead of initial.speed_secondary)"},
-      {"drive.load", "active|reactive (default active): a reactive load resists motion like friction and never drives the shaft"},
-      {"drive.profile", "constant|step|ramp|table|motor (default constant): how M_a varies"},
-      {"drive.step_time", "s, >= 0: profile step, M_a = drive.torque before, drive.step_torque from then on"},
-      {"drive.step_torque", "N·m: profile step, M_a after drive.step_time"},
-      {"drive.ramp_start", "s, >= 0 (default 0): profile ramp, M_a = drive.torque until then"},
-      {"drive.ramp_end", "s, > ramp_start: profile ramp, M_a linear from drive.torque to drive.ramp_torque"},
-      {"drive.ramp_torque", "N·m: profile ramp, M_a from drive.ramp_end on"},
-      {"drive.table", "file of 'time, torque' lines (s, N·m; linear between, constant outside; path relative to the scene; at most 100000 rows, values as the scene's): profile table"},
-      {"drive.stall_torque", "M_stall, N·m, > 0: profile motor, M_a = M_stall·(1 − φ̇p/φ̇_noload)"},
-      {"drive.no_load_speed", "φ̇_noload, rad/s or rpm, > 0: profile motor"},
-      {"friction.viscous_primary", "b_p, N·m·s/rad, >= 0 (default 0): M = b_p·φ̇p"},
-      {"friction.viscous_secondary", "b_s, N·m·s/rad referred to the primary, >= 0 (default 0)"},
-  };
+  static const std::map<std::string, std::string> keys = [] {
+    std::map<std::string, std::string> table;
+    for (const auto& [key, help] : scene_key_table) table.emplace(key, help);
+    return table;
+  }();
   return keys;
 }
 

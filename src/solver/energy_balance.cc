@@ -17,37 +17,49 @@ bool has_drive(const GearParameters& p) {
 /// The secondary bearing's own friction level, the reactive load's share apart.
 double own_bearing_secondary(const GearParameters& p) { return p.bearing_secondary - p.reactive_load; }
 
+/// A row both balances may hold: where the scene has it, its key, its label
+/// in the energy balance and in the momentum balance (empty: not in that
+/// one), and whether it dissipates energy.
+struct FlowRow {
+  Flow flow;
+  const char* key;
+  bool (*present)(const GearParameters&);
+  const char* energy;
+  const char* momentum;
+  bool dissipation;
+};
+
+/// The loads and friction, in the order the balances list them.
+constexpr FlowRow flow_rows[] = {
+    {Flow::load, "load", [](const GearParameters& p) { return p.load_torque != 0; },
+     "work on the load ∫M_L·φ̇s dt", "load impulse ∫M_L dt", false},
+    {Flow::reactive_load, "reactive_load", [](const GearParameters& p) { return p.reactive_load > 0; },
+     "reactive load ∫M_L·|φ̇s| dt", "reactive load ∫M_L·sign φ̇s dt", true},
+    {Flow::bearing_primary, "bearing_primary", [](const GearParameters& p) { return p.bearing_primary > 0; },
+     "primary bearing friction ∫k_Rp·|φ̇p| dt", "primary bearing friction (sliding and holding)", true},
+    {Flow::bearing_secondary, "bearing_secondary",
+     [](const GearParameters& p) { return own_bearing_secondary(p) > 0; },
+     "secondary bearing friction ∫k_Rs·|φ̇s| dt", "secondary bearing friction (sliding)", true},
+    {Flow::viscous_primary, "viscous_primary", [](const GearParameters& p) { return p.viscous_primary > 0; },
+     "primary viscous ∫b_p·φ̇p² dt", "primary viscous ∫b_p·φ̇p dt", true},
+    {Flow::viscous_secondary, "viscous_secondary", [](const GearParameters& p) { return p.viscous_secondary > 0; },
+     "secondary viscous ∫b_s·φ̇s² dt", "secondary viscous ∫b_s·φ̇s dt", true},
+    {Flow::tooth_friction, "tooth_friction", [](const GearParameters& p) { return p.tooth_friction > 0; },
+     "tooth friction ∫k_z·|M0·φ̇s| dt", "tooth friction ∫k_z·|M0|·sign φ̇s dt", true},
+    {Flow::contact_damping, "contact_damping", [](const GearParameters& p) { return p.damping > 0; },
+     "contact damping ∫(M0 − c·u)·u̇ dt", "", true},
+    {Flow::secondary_held, "secondary_held", [](const GearParameters& p) { return p.secondary_has_friction(); },
+     "", "holding the secondary at rest (static friction, lock)", false},
+    {Flow::lock, "lock", [](const GearParameters& p) { return p.self_locking; },
+     "self-locking catches ½Θs·φ̇s²", "self-locking catches Θs·φ̇s", true},
+};
+
 /// The rows both balances share: loads and friction, each where the scene has it.
 void friction_rows(const GearParameters& p, const Flows& f, bool energy, std::vector<BalanceTerm>& rows) {
-  auto row = [&](Flow k, const char* key, const std::string& label, bool dissipation) {
-    rows.push_back({key, label, at(f, k), dissipation && energy});
-  };
-  if (p.load_torque != 0)
-    row(Flow::load, "load", energy ? "work on the load ∫M_L·φ̇s dt" : "load impulse ∫M_L dt", false);
-  if (p.reactive_load > 0)
-    row(Flow::reactive_load, "reactive_load",
-        energy ? "reactive load ∫M_L·|φ̇s| dt" : "reactive load ∫M_L·sign φ̇s dt", true);
-  if (p.bearing_primary > 0)
-    row(Flow::bearing_primary, "bearing_primary",
-        energy ? "primary bearing friction ∫k_Rp·|φ̇p| dt" : "primary bearing friction (sliding and holding)", true);
-  if (own_bearing_secondary(p) > 0)
-    row(Flow::bearing_secondary, "bearing_secondary",
-        energy ? "secondary bearing friction ∫k_Rs·|φ̇s| dt" : "secondary bearing friction (sliding)", true);
-  if (p.viscous_primary > 0)
-    row(Flow::viscous_primary, "viscous_primary", energy ? "primary viscous ∫b_p·φ̇p² dt" : "primary viscous ∫b_p·φ̇p dt",
-        true);
-  if (p.viscous_secondary > 0)
-    row(Flow::viscous_secondary, "viscous_secondary",
-        energy ? "secondary viscous ∫b_s·φ̇s² dt" : "secondary viscous ∫b_s·φ̇s dt", true);
-  if (p.tooth_friction > 0)
-    row(Flow::tooth_friction, "tooth_friction",
-        energy ? "tooth friction ∫k_z·|M0·φ̇s| dt" : "tooth friction ∫k_z·|M0|·sign φ̇s dt", true);
-  if (energy && p.damping > 0)
-    row(Flow::contact_damping, "contact_damping", "contact damping ∫(M0 − c·u)·u̇ dt", true);
-  if (!energy && p.secondary_has_friction())
-    row(Flow::secondary_held, "secondary_held", "holding the secondary at rest (static friction, lock)", false);
-  if (p.self_locking)
-    row(Flow::lock, "lock", energy ? "self-locking catches ½Θs·φ̇s²" : "self-locking catches Θs·φ̇s", true);
+  for (const FlowRow& r : flow_rows) {
+    const std::string label = energy ? r.energy : r.momentum;
+    if (!label.empty() && r.present(p)) rows.push_back({r.key, label, at(f, r.flow), r.dissipation && energy});
+  }
 }
 
 }  // namespace

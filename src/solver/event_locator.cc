@@ -82,6 +82,39 @@ std::optional<Outside> excursion(const F& f, const LinearForm& form, const NodeS
   return std::nullopt;
 }
 
+/// The time the guard `form` leaves in (a, hi], from its values flo at a and
+/// fhi < 0 at hi: by Newton's method where the segment has its rate in
+/// closed form (`newton`; `rate` is its scratch state), else by bisection.
+double refined_crossing(Segment& segment, const LinearForm& form, bool newton, GearState& rate, double a,
+                        double hi, double flo, double fhi) {
+  auto f = [&](double t) { return form.at(segment.state_at(t), t); };
+  auto refine_on = [&](double lo, double hi, double flo, double fhi) {
+    if (!newton) return refine(f, lo, hi, flo, fhi);
+    // Along an oscillating mode, Newton's method on the guard alone (a
+    // line and a damped cosine) costs a third of one on the whole state.
+    if (const std::optional<DampedWaveForm> w = segment.damped_wave(form)) {
+      auto on_wave = [&](double s) { return w->value_and_slope(s - w->origin()); };
+      return bracketed_newton(on_wave, lo, hi, flo, fhi);
+    }
+    auto value_and_slope = [&](double s) {
+      segment.rate_at(s, rate);
+      return std::pair(f(s), form.rate(rate));
+    };
+    return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
+  };
+  // Heading out by more than rounding: the rate's terms cancel to no
+  // better than 1e-12 of their size (a slope that is 0 to rounding, as
+  // a shaft breaking away exactly at its friction level, is not one).
+  auto leaving = [&](double t) {
+    if (!newton) return false;
+    segment.rate_at(t, rate);
+    const double size = std::abs(form.omega_p * rate.omega_p) + std::abs(form.omega_s * rate.omega_s) +
+                        std::abs(form.dphi * rate.dphi) + std::abs(form.time);
+    return form.rate(rate) < -1e-12 * size;
+  };
+  return crossing_time(f, a, hi, flo, fhi, refine_on, leaving);
+}
+
 }  // namespace
 
 Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guards, double t0,
@@ -124,31 +157,7 @@ Crossing locate_first_crossing(Segment& segment, const std::vector<Guard>& guard
           }
           hi = first.time;
         }
-        auto refine_on = [&](double lo, double hi, double flo, double fhi) {
-          if (!newton) return refine(f, lo, hi, flo, fhi);
-          // Along an oscillating mode, Newton's method on the guard alone (a
-          // line and a damped cosine) costs a third of one on the whole state.
-          if (const std::optional<DampedWaveForm> w = segment.damped_wave(form)) {
-            auto on_wave = [&](double s) { return w->value_and_slope(s - w->origin()); };
-            return bracketed_newton(on_wave, lo, hi, flo, fhi);
-          }
-          auto value_and_slope = [&](double s) {
-            segment.rate_at(s, rate);
-            return std::pair(f(s), form.rate(rate));
-          };
-          return bracketed_newton(value_and_slope, lo, hi, flo, fhi);
-        };
-        // Heading out by more than rounding: the rate's terms cancel to no
-        // better than 1e-12 of their size (a slope that is 0 to rounding, as
-        // a shaft breaking away exactly at its friction level, is not one).
-        auto leaving = [&](double t) {
-          if (!newton) return false;
-          segment.rate_at(t, rate);
-          const double size = std::abs(form.omega_p * rate.omega_p) + std::abs(form.omega_s * rate.omega_s) +
-                              std::abs(form.dphi * rate.dphi) + std::abs(form.time);
-          return form.rate(rate) < -1e-12 * size;
-        };
-        const double t = crossing_time(f, a, hi, flo, fhi, refine_on, leaving);
+        const double t = refined_crossing(segment, form, newton, rate, a, hi, flo, fhi);
         if (t < first.time || !first.kind) first = {t, guards[i].kind};
       }
       before[i] = value;

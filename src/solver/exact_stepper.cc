@@ -65,24 +65,7 @@ class ExactSegment : public Segment {
     if (!(b > a)) return end_ = b;
     const Wave wa = wave_;
     const double ta = a - t0_, tb = b - t0_;
-    // 1. Pass in one interval what no guard can reach: each guard is
-    //    lin(τ) + h(τ), and |h| never exceeds its bound at a.
-    double reach = horizon_;
-    for (const Shape& g : shapes_) {
-      if (g.l2 != 0) {  // a ramp bends the speeds: only this step's lowest point counts
-        if (!(g.lowest(ta, tb) - g.bound(wa, kappa()) - slack(g, tb, wa) > 0)) reach = a;
-        else reach = std::min(reach, b);
-        if (reach == a) break;
-        continue;
-      }
-      const double bound = g.bound(wa, kappa()), margin = g.linear(ta) - bound - slack(g, ta, wa);
-      if (bound == 0 && g.linear(ta) >= 0 && g.l1 >= 0) continue;  // the oscillation has died out
-      if (!(margin > 0)) {
-        reach = a;
-        break;
-      }
-      if (g.l1 < 0) reach = std::min(reach, a + margin / -g.l1);
-    }
+    const double reach = unreachable_until(a, b, ta, tb, wa);
     if (reach > b) {
       end_ = reach;
       wave_ = wave(end_ - t0_);
@@ -91,36 +74,14 @@ class ExactSegment : public Segment {
     // A step of a few ulps of t cannot resolve the oscillation: report no
     // progress, which integrate() refuses with the period and the resolution.
     if (b - a < 8 * (std::nextafter(a, INFINITY) - a)) return end_ = a;
-    // 2. End the interval at the first local minimum of any guard that might
-    //    reach zero on it, so that every guard's minimum on the interval is at
-    //    one of its ends: a guard that dips below zero and back between two
-    //    samples (a grazing release, a speed that just touches zero) is found.
     const Wave wb = wave(tb);
-    double cut = b;
-    for (const Shape& g : shapes_) {
-      const double tolerance = slack(g, ta, wa);
-      const double lowest = g.lowest(ta, tb) - g.bound(wa, kappa());
-      if (lowest > tolerance) continue;
-      // Nor can it dip below zero if both ends are higher than the deepest
-      // sag a curvature of at most sup|g''| allows between them: (b − a)²/8·sup|g''|.
-      const double sag =
-          0.125 * (tb - ta) * (tb - ta) * (g.curvature_bound(wa, kappa()) + 2 * std::abs(g.l2));
-      if (std::min(g.value(wa, ta), g.value(wb, tb)) - sag > tolerance) continue;
-      const auto m = first_minimum(g, ta, tb, wa, wb);
-      if (!m || !(t0_ + *m < cut)) continue;
-      // Cut only at a dip that may go below zero and is deeper than rounding:
-      // a guard that starts on its boundary with g' = 0 to rounding (a shaft
-      // breaking away exactly at its friction level) has its minimum at the
-      // start, not a rounding-deep one just after it (first_minimum ignores
-      // slopes within rounding of zero for the same reason).
-      const double low = g.value(wave(*m), *m), start = g.value(wa, ta);
-      if (low <= tolerance && start - low > tolerance) cut = t0_ + *m;
-    }
+    double cut = first_dip(b, ta, tb, wa, wb);
     if (!(cut > a)) cut = b;
     end_ = cut;
     wave_ = cut == b ? wb : wave(cut - t0_);
     return end_;
   }
+
 
   /// The state from the changes since the segment start, so that it is exact
   /// to relative precision close to the start: a speed that has just left
@@ -329,48 +290,93 @@ class ExactSegment : public Segment {
     return 1e-12 * (g.l0_size + g.l1_size * tau + std::abs(g.p * x.w) + std::abs(g.q * x.w1));
   }
 
-  /// The first interior local minimum of g in (ta, tb), τ from the segment
-  /// start: split where g'' changes sign (at most once here); on each piece
-  /// g' is monotone and a minimum is where it turns from < 0 to >= 0.
-  std::optional<double> first_minimum(const Shape& g, double ta, double tb, const Wave& wa,
-                                      const Wave& wb) const {
-    // Newton's method on g' and g'', whose derivatives the wave gives at
-    // once; on the guard's damped cosine alone where the mode oscillates
-    // (there the zero of g'' also comes from its phase).
-    const std::optional<DampedWaveForm> form = oscillates() ? std::optional(wave_form(g)) : std::nullopt;
-    // A slope within rounding of zero counts as zero. Rounding here is mostly
-    // that of the twist: Δφ carries the contact twist u = Δφ − offset only to
-    // ulp(ε), which makes κ·u and so g' uncertain by about q·κ·ulp(ε).
-    const double rest = oscillator_.equilibrium();
-    const double noise =
-        8 * std::numeric_limits<double>::epsilon() *
-        (std::abs(g.l1) + std::abs(2 * g.l2 * tb) +
-         std::abs(g.p) * (std::abs(wa.w1) + std::abs(s0_.omega_p) + std::abs(s0_.omega_s)) +
-         std::abs(g.q) * (oscillator_.delta() * std::abs(wa.w1) +
-                          kappa() * (std::abs(wa.w) + std::abs(d_.offset) + std::abs(rest))));
-    if (form && form->line_slope() == 0) {
-      // No line (the twist, the torque): g turns where h does, at most once
-      // on an interval under half a period, and falling at ta that turn is
-      // a minimum; its time comes from the phase.
-      if (!(g.slope(wa, ta) < -noise)) return std::nullopt;
-      const double turn = form->next_turn(ta, ta).tau;  // the time alone
-      if (turn <= tb) return turn;
-      return std::nullopt;
+  /// 1. Pass in one interval what no guard can reach: each guard is
+  ///    lin(τ) + h(τ), and |h| never exceeds its bound at a. The time up to
+  ///    which none can reach zero; a where one might on [a, b].
+  double unreachable_until(double a, double b, double ta, double tb, const Wave& wa) {
+    double reach = horizon_;
+    for (const Shape& g : shapes_) {
+      if (g.l2 != 0) {  // a ramp bends the speeds: only this step's lowest point counts
+        if (!(g.lowest(ta, tb) - g.bound(wa, kappa()) - slack(g, tb, wa) > 0)) reach = a;
+        else reach = std::min(reach, b);
+        if (reach == a) break;
+        continue;
+      }
+      const double bound = g.bound(wa, kappa()), margin = g.linear(ta) - bound - slack(g, ta, wa);
+      if (bound == 0 && g.linear(ta) >= 0 && g.l1 >= 0) continue;  // the oscillation has died out
+      if (!(margin > 0)) {
+        reach = a;
+        break;
+      }
+      if (g.l1 < 0) reach = std::min(reach, a + margin / -g.l1);
     }
-    auto slope_at = [&](double tau) {
+    return reach;
+  }
+
+  /// 2. End the interval at the first local minimum of any guard that might
+  ///    reach zero on it, so that every guard's minimum on the interval is at
+  ///    one of its ends: a guard that dips below zero and back between two
+  ///    samples (a grazing release, a speed that just touches zero) is found.
+  double first_dip(double b, double ta, double tb, const Wave& wa, const Wave& wb) {
+    double cut = b;
+    for (const Shape& g : shapes_) {
+      const double tolerance = slack(g, ta, wa);
+      const double lowest = g.lowest(ta, tb) - g.bound(wa, kappa());
+      if (lowest > tolerance) continue;
+      // Nor can it dip below zero if both ends are higher than the deepest
+      // sag a curvature of at most sup|g''| allows between them: (b − a)²/8·sup|g''|.
+      const double sag =
+          0.125 * (tb - ta) * (tb - ta) * (g.curvature_bound(wa, kappa()) + 2 * std::abs(g.l2));
+      if (std::min(g.value(wa, ta), g.value(wb, tb)) - sag > tolerance) continue;
+      const auto m = first_minimum(g, ta, tb, wa, wb);
+      if (!m || !(t0_ + *m < cut)) continue;
+      // Cut only at a dip that may go below zero and is deeper than rounding:
+      // a guard that starts on its boundary with g' = 0 to rounding (a shaft
+      // breaking away exactly at its friction level) has its minimum at the
+      // start, not a rounding-deep one just after it (first_minimum ignores
+      // slopes within rounding of zero for the same reason).
+      const double low = g.value(wave(*m), *m), start = g.value(wa, ta);
+      if (low <= tolerance && start - low > tolerance) cut = t0_ + *m;
+    }
+    return cut;
+  }
+
+  /// g' from τ, with g'' (Newton's step): on the guard's damped cosine alone where the mode oscillates.
+  auto slope_function(const Shape& g, const std::optional<DampedWaveForm>& form) const {
+    return [this, &g, &form](double tau) {
       if (form) return form->slope(tau);
       const Wave x = wave(tau);
       return std::pair(g.slope(x, tau), g.curvature(x));
     };
+  }
+
+  /// A slope within rounding of zero counts as zero. Rounding here is mostly
+  /// that of the twist: Δφ carries the contact twist u = Δφ − offset only to
+  /// ulp(ε), which makes κ·u and so g' uncertain by about q·κ·ulp(ε).
+  double slope_noise(const Shape& g, double tb, const Wave& wa) const {
+    const double rest = oscillator_.equilibrium();
+    return 8 * std::numeric_limits<double>::epsilon() *
+           (std::abs(g.l1) + std::abs(2 * g.l2 * tb) +
+            std::abs(g.p) * (std::abs(wa.w1) + std::abs(s0_.omega_p) + std::abs(s0_.omega_s)) +
+            std::abs(g.q) * (oscillator_.delta() * std::abs(wa.w1) +
+                             kappa() * (std::abs(wa.w) + std::abs(d_.offset) + std::abs(rest))));
+  }
+
+  /// A piece of (ta, tb) on which g' is monotone, with g' at its ends.
+  struct SlopePiece {
+    double lo, hi, slope_lo, slope_hi;
+  };
+
+  /// (ta, tb) cut where g'' changes sign into pieces on which g' is monotone:
+  /// at most four, in time order, into `pieces`; returns their count.
+  int monotone_pieces(const Shape& g, const std::optional<DampedWaveForm>& form, double ta, double tb,
+                      const Wave& wa, const Wave& wb, SlopePiece (&pieces)[4]) const {
+    const auto slope_at = slope_function(g, form);
     auto curvature_at = [&](double tau) {
       const Wave x = wave(tau);
       return std::pair(g.curvature(x), g.third(x));
     };
     auto third_at = [&](double tau) { return g.third(wave(tau)); };
-    struct Piece {
-      double lo, hi, slope_lo, slope_hi;
-    };
-    Piece pieces[4];
     int count = 0;
     // Where g'' changes sign on [lo, hi] (at most once when g'' is monotone
     // there): cut into pieces on which g' is monotone.
@@ -406,8 +412,33 @@ class ExactSegment : public Segment {
     } else {
       split(ta, tb, ca, cb, sa, sb);
     }
+    return count;
+  }
+
+  /// The first interior local minimum of g in (ta, tb), τ from the segment
+  /// start: split where g'' changes sign (at most once here); on each piece
+  /// g' is monotone and a minimum is where it turns from < 0 to >= 0.
+  std::optional<double> first_minimum(const Shape& g, double ta, double tb, const Wave& wa,
+                                      const Wave& wb) const {
+    // Newton's method on g' and g'', whose derivatives the wave gives at
+    // once; on the guard's damped cosine alone where the mode oscillates
+    // (there the zero of g'' also comes from its phase).
+    const std::optional<DampedWaveForm> form = oscillates() ? std::optional(wave_form(g)) : std::nullopt;
+    const double noise = slope_noise(g, tb, wa);
+    if (form && form->line_slope() == 0) {
+      // No line (the twist, the torque): g turns where h does, at most once
+      // on an interval under half a period, and falling at ta that turn is
+      // a minimum; its time comes from the phase.
+      if (!(g.slope(wa, ta) < -noise)) return std::nullopt;
+      const double turn = form->next_turn(ta, ta).tau;  // the time alone
+      if (turn <= tb) return turn;
+      return std::nullopt;
+    }
+    SlopePiece pieces[4];
+    const int count = monotone_pieces(g, form, ta, tb, wa, wb, pieces);
+    const auto slope_at = slope_function(g, form);
     for (int i = 0; i < count; ++i) {
-      const Piece& piece = pieces[i];
+      const SlopePiece& piece = pieces[i];
       if (!(piece.slope_lo < -noise && piece.slope_hi >= 0)) continue;
       if (piece.slope_hi == 0) return piece.hi;
       const double r = bracketed_newton(slope_at, piece.lo, piece.hi, piece.slope_lo, piece.slope_hi);

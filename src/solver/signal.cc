@@ -1,11 +1,13 @@
 #include "solver/signal.h"
 
+#include "common/enum_table.h"
+
 namespace gearpatch {
 namespace {
 
 /// The one table of the signals: identity, name and unit.
 struct SignalName {
-  Signal signal;
+  Signal key;
   const char* name;
   const char* unit;
 };
@@ -16,16 +18,10 @@ constexpr SignalName signal_table[] = {
     {Signal::m0, "m0", "N·m"},
 };
 
-const SignalName& row(Signal signal) {
-  for (const auto& r : signal_table)
-    if (r.signal == signal) return r;
-  return signal_table[0];  // not reached: every Signal has a row
-}
-
 }  // namespace
 
-std::string to_string(Signal signal) { return row(signal).name; }
-std::string unit(Signal signal) { return row(signal).unit; }
+std::string to_string(Signal signal) { return row_of(signal_table, signal).name; }
+std::string unit(Signal signal) { return row_of(signal_table, signal).unit; }
 
 double value(const Sample& s, Signal signal) {
   switch (signal) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "common/error.h"
+#include "common/json_text.h"
 #include "common/gnuplot.h"
 #include "common/notices.h"
 
@@ -27,7 +28,7 @@ void SweepOutputs::write(const SweepTable& table) {
   const std::string text = to_text(table);
   std::vector<std::string> warnings;
   if (set_.has("--out")) set_.stage("--out", text);
-  if (set_.has("--json")) set_.stage("--json", to_json(table));
+  if (set_.has("--json")) set_.stage("--json", json_text(to_json(table), 1));
   if (set_.has("--csv")) set_.stage("--csv", to_csv(table));
   const auto draw = [&](const std::string& option, const std::string& format, auto&& plot) {
     if (!set_.has(option)) return;

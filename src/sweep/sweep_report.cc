@@ -162,7 +162,7 @@ std::string to_csv(const SweepTable& t) {
   return out;
 }
 
-std::string to_json(const SweepTable& t) {
+nlohmann::json to_json(const SweepTable& t) {
   nlohmann::json points = nlohmann::json::array();
   for (const runs::JobOutcome& o : t.points) {
     nlohmann::json p{{"index", o.index}, {"label", o.label}};
@@ -175,7 +175,7 @@ std::string to_json(const SweepTable& t) {
     }
     points.push_back(std::move(p));
   }
-  return nlohmann::json{{"study", to_json(t.study)}, {"points", points}, {"failed", t.failed()}}.dump(1) + "\n";
+  return nlohmann::json{{"study", to_json(t.study)}, {"points", points}, {"failed", t.failed()}};
 }
 
 std::string overlay_plot(const SweepTable& t, const std::string& format) {

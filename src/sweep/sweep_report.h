@@ -1,4 +1,5 @@
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ std::string to_text(const SweepTable& table);
 /// One row per point: index, the swept keys, the figures, the verdict, the failure.
 std::string to_csv(const SweepTable& table);
 /// The study and every point's values, figures, verdict or failure (no traces).
-std::string to_json(const SweepTable& table);
+nlohmann::json to_json(const SweepTable& table);
 
 /// The chosen signals of every point over time, one panel per signal.
 std::string overlay_plot(const SweepTable& table, const std::string& format);

@@ -101,7 +101,7 @@ std::string to_table(const VerdictReport& v) {
 }
 
 nlohmann::json to_json(const VerdictReport& v) {
-  nlohmann::json j = verify::json_of(v.result);
+  nlohmann::json j = verify::to_json(v.result);
   nlohmann::json measured = nlohmann::json::object();
   for (const auto& [signal, error] : signal_errors(v.result)) measured[to_string(signal)] = error;
   j["measurement"] = {{"signals", measured},

@@ -103,7 +103,7 @@ std::string verdict_lines(const VerifyResult& r) {
 
 std::string to_table(const VerifyResult& r) { return measurement_table(r) + verdict_lines(r); }
 
-nlohmann::json json_of(const VerifyResult& r) {
+nlohmann::json to_json(const VerifyResult& r) {
   nlohmann::json j;
   j["scene"] = r.scene;
   j["level"] = std::string(level_name(r.level));
@@ -143,11 +143,6 @@ nlohmann::json json_of(const VerifyResult& r) {
   j["diagnosis"] = r.diagnosis;
   j["warnings"] = r.warnings;
   return j;
-}
-
-std::string to_json(const VerifyResult& r) {
-  // Text that is not UTF-8 (a file name) becomes U+FFFD, not an exception after the work.
-  return json_of(r).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace gearpatch::verify

@@ -18,8 +18,7 @@ std::string verdict_lines(const VerifyResult& result);
 
 /// The same numbers as JSON, for scripts: the verdict, the tolerance it was
 /// judged at, each check and each measured error.
-nlohmann::json json_of(const VerifyResult& result);
-std::string to_json(const VerifyResult& result);
+nlohmann::json to_json(const VerifyResult& result);
 
 /// Each signal on one time axis, through gnuplot (verify/plot.cc): the
 /// reference from the exact output (events and contact peaks included), the

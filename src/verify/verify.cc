@@ -127,6 +127,52 @@ double trace_change(const CircuitTrace& first, const CircuitTrace& second,
   return worst;
 }
 
+/// The patch options of a verify run: the level's comparator offsets and lock catch, and the scaling asked for.
+PatchOptions patch_options_of(const VerifyOptions& options) {
+  PatchOptions patch_options = circuit::patch_options_for(options.level);
+  patch_options.autoscale = options.autoscale;
+  if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
+  return patch_options;
+}
+
+/// Runs the deck in ngspice, timed into r.ngspice_seconds. One bounded retry
+/// of a generated deck that ngspice aborts: the stiffly stable gear method,
+/// which damps what trap lets ring at a switching corner, with ngspice's
+/// default charge tolerance (measured: random-2-085's --autoscale deck, a
+/// contact closing the damping switch at 0.84 MU of relative speed, aborted
+/// under gear at chgtol 1e-16 and finished at 1e-14; reltol 1e-6 or 1e-8,
+/// trtol 1 did not).
+spice::Vectors run_deck(const std::string& deck, const circuit::Circuit& circuit,
+                        const circuit::TransientControl& control, const VerifyOptions& options,
+                        spice::Simulator& simulator, VerifyResult& r) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto with_gear = [&]() -> std::optional<std::string> {
+    if (options.deck_text || control.method == "gear") return std::nullopt;
+    circuit::TransientControl gear = control;
+    gear.method = "gear";
+    gear.chgtol = 1e-14;
+    return circuit::render_netlist(circuit, gear);
+  };
+  const spice::Vectors vectors =
+      spice::run_with_retry(simulator, deck, options.limits, with_gear, "method=gear chgtol=1e-14", r.retry);
+  r.ngspice_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return vectors;
+}
+
+/// --check-step: how far the generated deck run again at half the largest
+/// step moves the circuit's signals.
+double halved_step_change(const circuit::Circuit& circuit, circuit::TransientControl control,
+                           const VerifyOptions& options, spice::Simulator& simulator, const VerifyResult& r,
+                           const CompareSettings& settings, double unit_volts) {
+  circuit::TransientControl half = control;  // as the run that gave r.circuit, the retry's method if it ran
+  if (r.retry) half.method = "gear", half.chgtol = 1e-14;
+  half.max_step_points *= 2;
+  half.max_step_seconds /= 2;  // the scene's bound, where it is the tighter one
+  const spice::Vectors finer = simulator.run(circuit::render_netlist(circuit, half), options.limits);
+  return trace_change(r.circuit, unscale(finer, circuit, unit_volts), settings.full_scales,
+                      r.comparison.time_tolerance);
+}
+
 /// verify, its errors from below not yet located in the scene file.
 VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spice::Simulator& simulator) {
   VerifyResult r;
@@ -142,12 +188,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.gear = input.gear;
   TrajectoryRecorder recorder(model, r.reference);
   const PeakRun run = run_reference(input, {{reference_step(scene, options), recorder}});
-  PatchOptions patch_options;
-  patch_options.comparator_offset = circuit::comparator_offset(options.level);
-  patch_options.lock_catch = options.level == circuit::Level::ideal;
-  patch_options.autoscale = options.autoscale;
-  if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
-  const Patch patch = make_patch(input, patch_options, run);
+  const Patch patch = make_patch(input, patch_options_of(options), run);
   r.warnings = patch.warnings;
   circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
   if (options.alter_circuit) options.alter_circuit(circuit);
@@ -161,24 +202,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   const circuit::TransientControl control = circuit::scene_control(options.transient, input.gear, scene.duration);
   r.transient = circuit::describe(control);
   const std::string deck = options.deck_text.value_or(circuit::render_netlist(circuit, control));
-
-  const auto start = std::chrono::steady_clock::now();
-  // One bounded retry of a generated deck that ngspice aborts: the stiffly
-  // stable gear method, which damps what trap lets ring at a switching corner,
-  // with ngspice's default charge tolerance (measured: random-2-085's
-  // --autoscale deck, a contact closing the damping switch at 0.84 MU of
-  // relative speed, aborted under gear at chgtol 1e-16 and finished at 1e-14;
-  // reltol 1e-6 or 1e-8, trtol 1 did not).
-  const auto with_gear = [&]() -> std::optional<std::string> {
-    if (options.deck_text || control.method == "gear") return std::nullopt;
-    circuit::TransientControl gear = control;
-    gear.method = "gear";
-    gear.chgtol = 1e-14;
-    return circuit::render_netlist(circuit, gear);
-  };
-  const spice::Vectors vectors =
-      spice::run_with_retry(simulator, deck, options.limits, with_gear, "method=gear chgtol=1e-14", r.retry);
-  r.ngspice_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const spice::Vectors vectors = run_deck(deck, circuit, control, options, simulator, r);
   check_simulator_output(vectors, circuit);
 
   if (run.failure) throw *run.failure;  // after the simulator, whose failure comes first
@@ -191,16 +215,9 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   settings.grazing_depth = circuit::comparator_offset(options.level) * patch.maxima.contact_twist;
   r.comparison = compare(r.reference, r.circuit, model, settings);
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
-  if (options.check_step && !options.deck_text) {
-    circuit::TransientControl half = control;  // as the run that gave r.circuit, the retry's method if it ran
-    if (r.retry) half.method = "gear", half.chgtol = 1e-14;
-    half.max_step_points *= 2;
-    half.max_step_seconds /= 2;  // the scene's bound, where it is the tighter one
-    const spice::Vectors finer = simulator.run(circuit::render_netlist(circuit, half), options.limits);
+  if (options.check_step && !options.deck_text)
     r.step_halving_change =
-        trace_change(r.circuit, unscale(finer, circuit, scene.machine.unit_volts), settings.full_scales,
-                     r.comparison.time_tolerance);
-  }
+        halved_step_change(circuit, control, options, simulator, r, settings, scene.machine.unit_volts);
   judge(r);
   if (!r.passed)
     r.diagnosis = diagnose(r, patch);
