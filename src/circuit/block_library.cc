@@ -358,6 +358,8 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
 }
 
 
+double ideal_comparator_width_mu() { return IdealFigures::comparator_width_mu; }
+
 double halfwave_gain(Level level, const MachineProfile& m) {
   if (level == Level::ideal) return 1;
   // A diode drop (0.5 V at the rectifier's 0.1 mA and its load) plus margin.

@@ -56,6 +56,9 @@ std::string to_string(BlockKind block);
 /// full scale at gain 1, 0.10 % at gain 1/2).
 double halfwave_gain(Level level, const MachineProfile& machine);
 
+/// The ideal level's comparator: out = U·tanh((in − offset)/width), width in MU.
+double ideal_comparator_width_mu();
+
 /// Shared lines every deck of that level needs once, before any block:
 /// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
 std::string render_models(Level level, const MachineProfile& machine);

@@ -168,9 +168,20 @@ class Builder {
       // (measured: random-2701-003 left 0.41 rad/s against 0, 46 % of full
       // scale; latched, it passes). On hardware the latch waits for its own
       // measurements with backlash.
+      // At the ideal level the latch is set by its own engagement comparator
+      // (add_self_locking), which reaches the latch's closing level where the
+      // switch's comparator starts to conduct: a shallow catch held the lock
+      // only while the twist stayed beyond δ2 (measured: a driven zero-backlash
+      // scene's third catch, 2.2e-5 MU deep, left the secondary at 0.4 rad/s
+      // and the run 32.5 % of full scale off; set by the shifted comparator,
+      // 0.05 %).
       const bool latch = locks_latched();
       in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p", latch ? "stopped_bwd" : ""));
       in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n", latch ? "stopped_fwd" : ""));
+      if (latch && level_ == Level::ideal) {
+        in[in.size() - 2].latched_by = "caught_p";
+        in.back().latched_by = "caught_n";
+      }
     }
     if (has(Setting::alpha_load)) {
       c_.sources.emplace_back("ref_p", 1.0);
@@ -373,11 +384,24 @@ class Builder {
                                   "op-amp cannot swing to 1 MU plus a diode drop", gain));
     contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
     if (!locks_latched()) return;
+    if (level_ == Level::ideal) caught_comparators();
     const std::string release = fmt::format("{}", lock_release(level_));
     block("cmp_stopped_bwd", BlockKind::comparator, {"ws", "stopped_bwd"}, "-" + release,
           "lock latch release: ws > -" + release + ", backward motion stopped");
     block("cmp_stopped_fwd", BlockKind::comparator, {"ws_n", "stopped_fwd"}, "-" + release,
           "lock latch release: ws < " + release + ", forward motion stopped");
+  }
+
+  /// The lock latch's set at the ideal level: the engagement comparators'
+  /// copies, shifted by the depth at which a tanh comparator reaches the
+  /// latch's closing level (0.2 MU): the latch closes once the switch conducts.
+  void caught_comparators() {
+    const std::string in = on_x() ? "x" : "xp", in_n = in + "_n";
+    const std::string offset = fmt::format("{{delta2-{:.4g}}}", std::atanh(0.2) * ideal_comparator_width_mu());
+    block("cmp_caught_p", BlockKind::comparator, {in, "caught_p"}, offset,
+          "lock latch set: " + in + " > " + offset + ", the engagement switch conducting");
+    block("cmp_caught_n", BlockKind::comparator, {in_n, "caught_n"}, offset,
+          "lock latch set: " + in + " < -" + offset + ", the engagement switch conducting");
   }
 
   /// Whether the lock's reaction is latched until the secondary has stopped (add_secondary).

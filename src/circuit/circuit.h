@@ -28,6 +28,8 @@ struct AmplifierInput {
   /// once switched_by is high and released_by low, opened once switched_by
   /// is low and released_by high, held in between.
   std::string released_by = {};
+  /// With released_by: the latch's set node, where it is not switched_by.
+  std::string latched_by = {};
 };
 
 /// An inverting integrator or summer of the machine, with its output node.
