@@ -81,8 +81,7 @@ TEST_CASE("with backlash the ideal circuit's lock holds until the secondary has 
 TEST_CASE("a shallow catch without backlash latches the lock where its switch conducts", "[verify][ngspice]") {
   // Driven, zero backlash, the primary at 1 rad/s: each catch is shallower
   // than the last, and the third (2.2e-5 MU of X' deep, δ2 = 1e-5 MU) set the
-  // latch from the engagement comparator only to 0.12 MU of its 0.2 MU;
-  // 2701-31: a catch 1.2e-5 MU deep with backlash.
+  // latch from the engagement comparator only to 0.12 MU of its 0.2 MU.
   const Scene driven = parse_scene(R"(name = lock-shallow-catch
 [gear]
 inertia_primary = 0.08698
@@ -102,10 +101,7 @@ duration = 0.76263
 )",
                                    "lock-shallow-catch.ini");
   auto ngspice = spice::make_batch_ngspice();
-  for (const Scene& scene : {driven, generated(2701, 31)}) {
-    const verify::VerifyResult v = verify::verify(scene, {}, *ngspice);
-    INFO(scene.name);
-    for (const auto& f : v.failures) INFO(f);
-    CHECK(v.passed);
-  }
+  const verify::VerifyResult v = verify::verify(driven, {}, *ngspice);
+  for (const auto& f : v.failures) INFO(f);
+  CHECK(v.passed);
 }
