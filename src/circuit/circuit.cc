@@ -168,13 +168,13 @@ class Builder {
       // (measured: random-2701-003 left 0.41 rad/s against 0, 46 % of full
       // scale; latched, it passes). On hardware the latch waits for its own
       // measurements with backlash.
-      // Without backlash at the ideal level the latch is set by its own engagement comparator
-      // (add_self_locking), which reaches the latch's closing level where the
-      // switch's comparator starts to conduct: a shallow catch held the lock
-      // only while the twist stayed beyond δ2 (measured: a driven zero-backlash
-      // scene's third catch, 2.2e-5 MU deep, left the secondary at 0.4 rad/s
-      // and the run 32.5 % of full scale off; set by the shifted comparator,
-      // 0.05 %).
+      // Without backlash at the ideal level the latch is set by its own
+      // engagement comparators (caught_comparators), which reach the latch's
+      // closing level where the switch starts to conduct: set by the switch's
+      // comparator, a shallow catch held the lock only while the twist rate
+      // stayed beyond δ2 (measured: a driven zero-backlash scene's third
+      // catch, 2.2e-5 MU deep, left the secondary at 0.4 rad/s and the run
+      // 32.5 % of full scale off; set by the lowered comparators, 0.05 %).
       const bool latch = locks_latched();
       in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p", latch ? "stopped_bwd" : ""));
       in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n", latch ? "stopped_fwd" : ""));
@@ -392,16 +392,20 @@ class Builder {
           "lock latch release: ws < " + release + ", forward motion stopped");
   }
 
-  /// The lock latch's set at the ideal level: the engagement comparators'
-  /// copies, shifted by the depth at which a tanh comparator reaches the
-  /// latch's closing level (0.2 MU): the latch closes once the switch conducts.
+  /// The lock latch's set at the ideal level: copies of the engagement
+  /// comparators with their offset lowered by the depth at which a comparator
+  /// reaches the latch's closing level, so the latch closes where the lock's
+  /// switch starts to conduct. The offset is a number of its own (δ2 less
+  /// that depth), which a sheet sets on a threshold potentiometer.
   void caught_comparators() {
     const std::string in = on_x() ? "x" : "xp", in_n = in + "_n";
-    const std::string offset = fmt::format("{{delta2-{:.4g}}}", std::atanh(0.2) * ideal_comparator_width_mu());
+    const double depth = ideal_latch_set_depth_mu();
+    const std::string offset = fmt::format("{:.6g}", contact_threshold(patch_.delta2) - depth);
+    const std::string why = fmt::format(" (delta2 - {:.4g}), the engagement switch conducting", depth);
     block("cmp_caught_p", BlockKind::comparator, {in, "caught_p"}, offset,
-          "lock latch set: " + in + " > " + offset + ", the engagement switch conducting");
+          "lock latch set: " + in + " > " + offset + why);
     block("cmp_caught_n", BlockKind::comparator, {in_n, "caught_n"}, offset,
-          "lock latch set: " + in + " < -" + offset + ", the engagement switch conducting");
+          "lock latch set: " + in + " < -(" + offset + ")" + why);
   }
 
   /// Whether the latch's set is caught_comparators' (ideal, zero backlash):
