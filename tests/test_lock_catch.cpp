@@ -101,7 +101,13 @@ duration = 0.76263
 )",
                                    "lock-shallow-catch.ini");
   auto ngspice = spice::make_batch_ngspice();
-  const verify::VerifyResult v = verify::verify(driven, {}, *ngspice);
-  for (const auto& f : v.failures) INFO(f);
-  CHECK(v.passed);
+  // random-25-017: undriven, the secondary caught once, shallowly (ω_s 8.5 %
+  // of full scale off when set by the engagement comparator).
+  for (const Scene& scene : {driven, generated(25, 17)}) {
+    const verify::VerifyResult v = verify::verify(scene, {}, *ngspice);
+    std::string why;
+    for (const auto& f : v.failures) why += f + "\n";
+    INFO(scene.name << "\n" << why);
+    CHECK(v.passed);
+  }
 }
