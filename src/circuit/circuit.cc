@@ -376,12 +376,14 @@ class Builder {
     // the loop gain, which the measured decks prefer (bild6c on THE ANALOG
     // THING, perfect components: band 0.023 0.28 %, band 0.012 at the same
     // loop gain as gain 1 9.4 %).
-    const double gain = halfwave_gain(level_, c_.machine);
+    const double gain = caught_sets_latch() ? zero_backlash_lock_gain : halfwave_gain(level_, c_.machine);
     block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"},
           gain == 1 ? "" : fmt::format("{}", gain),
-          gain == 1 ? "lock_below = min(clip, 0), lock_above = max(clip, 0)"
-                    : fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): the rectifier's "
-                                  "op-amp cannot swing to 1 MU plus a diode drop", gain));
+          gain == 1   ? "lock_below = min(clip, 0), lock_above = max(clip, 0)"
+          : gain > 1  ? fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): a catch stops "
+                                    "the secondary {0} times faster", gain)
+                      : fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): the rectifier's "
+                                    "op-amp cannot swing to 1 MU plus a diode drop", gain));
     contact_comparators("engaged", "{delta2}", "block 17, (6.7) engagement");
     if (!locks_latched()) return;
     if (caught_sets_latch()) caught_comparators();
@@ -407,6 +409,14 @@ class Builder {
     block("cmp_caught_n", BlockKind::comparator, {in_n, "caught_n"}, offset,
           "lock latch set: " + in + " < -(" + offset + ")" + why);
   }
+
+  /// The ideal zero-backlash lock's reaction, in units of the strongest
+  /// weight's: a catch takes |φ̇s| (MU) over 10·α_lock·k0 of machine time to
+  /// stop the secondary, which the reference does at once, and a ratchet
+  /// stopped at every tooth adds that up (measured: random-1-031 with
+  /// --autoscale, ω_s 0.28 MU at each catch, each tooth 0.1 ms late, 12 % of
+  /// full scale off at the end; 2, 3 and 5 times stronger: a pass).
+  static constexpr double zero_backlash_lock_gain = 3;
 
   /// Whether the latch's set is caught_comparators' (ideal, zero backlash):
   /// with backlash, X' = 0 all through the play holds the shifted comparator
