@@ -67,14 +67,14 @@ std::vector<Variant> variants(const circuit::Circuit& c) {
   return v;
 }
 
-/// The variants' ngspice limit: 20 times the judged run's time, at least 10 s.
+/// The variants' ngspice limit: 10 times the judged run's time, at least 5 s.
 /// A change that makes a hardware deck chatter (the ideal band on the lock's
 /// loop, a tenth of the Schmitt triggers' hysteresis) can force ngspice into
 /// tiny steps for minutes (measured on classic, random-2772-010: over 300 s
 /// and 146 s against the judged run's 1.3 s); such a run is left out.
 verify::VerifyOptions bounded(const verify::VerifyOptions& options, const verify::VerifyResult& failed) {
   verify::VerifyOptions out = options;
-  const double seconds = std::max(10.0, 20 * failed.ngspice_seconds);
+  const double seconds = std::max(5.0, 10 * failed.ngspice_seconds);
   const auto limit = std::chrono::milliseconds(static_cast<long long>(1000 * seconds));
   out.limits.timeout = std::min(options.limits.timeout, limit);
   return out;
