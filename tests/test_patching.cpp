@@ -58,8 +58,10 @@ std::vector<std::string> example_and_drive_scenes() {
 
 /// One amplifier input as both sides describe it: from node, amplifier,
 /// input, weight, potentiometer setting (name and value; "" and 1 for none),
-/// the node that switches it and the node that releases its latch ("" for none).
-using DeckWire = std::tuple<std::string, std::string, int, int, std::string, double, std::string, std::string>;
+/// the node that switches it and the nodes that set and release its latch
+/// ("" for none).
+using DeckWire =
+    std::tuple<std::string, std::string, int, int, std::string, double, std::string, std::string, std::string>;
 
 /// The wires of an ideal deck, read back from its instance lines and subckts.
 std::set<DeckWire> deck_wires(const std::string& deck, double input_resistance) {
@@ -90,17 +92,17 @@ std::set<DeckWire> deck_wires(const std::string& deck, double input_resistance) 
   for (const auto& w : amplifiers) {
     const std::string amp = w[0].substr(1);
     for (std::size_t k = 1; k + 2 < w.size(); ++k) {
-      std::string node = w[k], ctrl, setting, reset;
-      if (latches.count(node)) {  // in parallel with the switch: the same ends, set by the switch's control
-        const auto& [before, set, release] = latches.at(node);
+      std::string node = w[k], ctrl, setting, set, reset;
+      if (latches.count(node)) {  // in parallel with the switch: the same ends
+        std::string before;
+        std::tie(before, set, reset) = latches.at(node);
         CHECK(switches.count(node));
-        CHECK(switches[node] == std::make_pair(before, set));
-        reset = release;
+        CHECK(switches[node].first == before);
       }
       if (switches.count(node)) std::tie(node, ctrl) = switches.at(node);
       if (pots.count(node)) std::tie(node, setting) = pots.at(node);
       wires.emplace(node, amp, static_cast<int>(k), weights.at(w.back()).at(static_cast<int>(k)), setting,
-                    setting.empty() ? 1.0 : params.at(setting), ctrl, reset);
+                    setting.empty() ? 1.0 : params.at(setting), ctrl, set, reset);
     }
   }
   return wires;
@@ -110,7 +112,7 @@ std::set<DeckWire> patch_wires(const Allocation& a) {
   std::set<DeckWire> wires;
   for (const Connection& c : a.connections)
     wires.emplace(c.from_node, c.to_instance, c.input, c.weight, c.potentiometer ? to_string(*c.potentiometer) : "",
-                  c.setting, c.switch_node, c.latch_reset_node);
+                  c.setting, c.switch_node, c.latch_set_node, c.latch_reset_node);
   return wires;
 }
 

@@ -29,6 +29,7 @@ struct IdealFigures {
   static constexpr double switch_roff = 1.0e12;    ///< Ohm, ROFF/RON = 1e12
   static constexpr double switch_vh_mu = 0.01;     ///< switch hysteresis on ctrl, MU
   static constexpr double comparator_width_mu = 1.0e-4;  ///< tanh width, MU
+  static constexpr double latch_set_mu = 0.2;      ///< set − reset beyond 1 MU that closes the latch
 };
 
 /// Hardware level: datasheet figures (templates/README.md lists them).
@@ -228,7 +229,7 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("sw_ron", num(F::switch_ron));
     ctx.set("sw_roff", num(F::switch_roff));
     ctx.set("sw_vh", num(F::switch_vh_mu * u));
-    ctx.set("latch_vt", num(0.2 * u));
+    ctx.set("latch_vt", num(F::latch_set_mu * u));
     ctx.set("latch_c", num(1e-3 / m.integrator_constant));  // 1 Ω: 1 ms at k0 = 1/s
     const double w = F::comparator_width_mu * u;
     ctx.set("cmp_width", num(w));
@@ -376,6 +377,10 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
   return render(level, kind, ctx);
 }
 
+
+double ideal_latch_set_depth_mu() {
+  return std::atanh(IdealFigures::latch_set_mu) * IdealFigures::comparator_width_mu;
+}
 
 double halfwave_gain(Level level, const MachineProfile& m) {
   if (level == Level::ideal) return 1;

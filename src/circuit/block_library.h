@@ -56,6 +56,10 @@ std::string to_string(BlockKind block);
 /// full scale at gain 1, 0.10 % at gain 1/2).
 double halfwave_gain(Level level, const MachineProfile& machine);
 
+/// How far beyond its offset (MU) the ideal level's comparator, U·tanh((in −
+/// offset)/width), must be driven to reach the ideal latch's closing level.
+double ideal_latch_set_depth_mu();
+
 /// Shared lines every deck of that level needs once, before any block:
 /// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
 std::string render_models(Level level, const MachineProfile& machine);

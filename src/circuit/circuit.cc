@@ -204,9 +204,20 @@ class Builder {
       // (measured: random-2701-003 left 0.41 rad/s against 0, 46 % of full
       // scale; latched, it passes). On hardware the latch waits for its own
       // measurements with backlash.
+      // Without backlash at the ideal level the latch is set by its own
+      // engagement comparators (caught_comparators), which reach the latch's
+      // closing level where the switch starts to conduct: set by the switch's
+      // comparator, a shallow catch held the lock only while the twist rate
+      // stayed beyond δ2 (measured: a driven zero-backlash scene's third
+      // catch, 2.2e-5 MU deep, left the secondary at 0.4 rad/s and the run
+      // 32.5 % of full scale off; set by the lowered comparators, 0.05 %).
       const bool latch = locks_latched();
       in.push_back(through("lock_below", Setting::alpha_lock, "engaged_p", latch ? "stopped_bwd" : ""));
       in.push_back(through("lock_above", Setting::alpha_lock, "engaged_n", latch ? "stopped_fwd" : ""));
+      if (latch && caught_sets_latch()) {
+        in[in.size() - 2].latched_by = "caught_p";
+        in.back().latched_by = "caught_n";
+      }
     }
     if (has(Setting::alpha_load)) {
       const Section load(feature_, "load torque");
@@ -448,16 +459,19 @@ class Builder {
     // the loop gain, which the measured decks prefer (bild6c on THE ANALOG
     // THING, perfect components: band 0.023 0.28 %, band 0.012 at the same
     // loop gain as gain 1 9.4 %).
-    const double gain = halfwave_gain(level_, c_.machine);
+    const double gain = caught_sets_latch() ? zero_backlash_lock_gain : halfwave_gain(level_, c_.machine);
     block("lock_half", BlockKind::halfwave, {"lock_steep_n", "lock_below", "lock_above"},
           gain == 1 ? "" : fmt::format("{}", gain),
-          gain == 1 ? "lock_below = min(clip, 0), lock_above = max(clip, 0)"
-                    : fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): the rectifier's "
-                                  "op-amp cannot swing to 1 MU plus a diode drop", gain));
+          gain == 1   ? "lock_below = min(clip, 0), lock_above = max(clip, 0)"
+          : gain > 1  ? fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): a catch stops "
+                                    "the secondary {0} times faster", gain)
+                      : fmt::format("lock_below = {0}*min(clip, 0), lock_above = {0}*max(clip, 0): the rectifier's "
+                                    "op-amp cannot swing to 1 MU plus a diode drop", gain));
     mean("lock_below", "min(clip, 0)", "the lock's reaction to backward motion");
     mean("lock_above", "max(clip, 0)", "the lock's reaction to forward motion");
     contact_comparators("engaged", "{delta2}", "δ2", "block 17, (6.7) engagement");
     if (!locks_latched()) return;
+    if (caught_sets_latch()) caught_comparators();
     const std::string release = fmt::format("{}", lock_release(level_));
     block("cmp_stopped_bwd", BlockKind::comparator, {"ws", "stopped_bwd"}, "-" + release,
           "lock latch release: ws > -" + release + ", backward motion stopped");
@@ -466,6 +480,39 @@ class Builder {
     mean("stopped_bwd", "φ̇s > −δr", "backward motion has stopped");
     mean("stopped_fwd", "φ̇s < δr", "forward motion has stopped");
   }
+
+  /// The lock latch's set at the ideal level: copies of the engagement
+  /// comparators with their offset lowered by the depth at which a comparator
+  /// reaches the latch's closing level, so the latch closes where the lock's
+  /// switch starts to conduct. The offset is a number of its own (δ2 less
+  /// that depth), which a sheet sets on a threshold potentiometer.
+  void caught_comparators() {
+    const std::string in = on_x() ? "x" : "xp", in_n = in + "_n";
+    const double depth = ideal_latch_set_depth_mu();
+    const std::string offset = fmt::format("{:.6g}", contact_threshold(patch_.delta2) - depth);
+    const std::string why = fmt::format(" (delta2 - {:.4g}), the engagement switch conducting", depth);
+    block("cmp_caught_p", BlockKind::comparator, {in, "caught_p"}, offset,
+          "lock latch set: " + in + " > " + offset + why);
+    block("cmp_caught_n", BlockKind::comparator, {in_n, "caught_n"}, offset,
+          "lock latch set: " + in + " < -(" + offset + ")" + why);
+    mean("caught_p", "Δφ' > δ2 − " + fmt::format("{:.4g}", depth), "a forward catch sets the lock latch");
+    mean("caught_n", "Δφ' < −(δ2 − " + fmt::format("{:.4g}", depth) + ")", "a backward catch sets the lock latch");
+  }
+
+  /// The ideal zero-backlash lock's reaction, in units of the strongest
+  /// weight's: a catch takes |φ̇s| (MU) over 10·α_lock·k0 of machine time to
+  /// stop the secondary, which the reference does at once, and a ratchet
+  /// stopped at every tooth adds that up (measured: random-1-031 with
+  /// --autoscale, ω_s 0.28 MU at each catch, each tooth 0.1 ms late, 12 % of
+  /// full scale off at the end; 2, 3 and 5 times stronger: a pass).
+  static constexpr double zero_backlash_lock_gain = 3;
+
+  /// Whether the latch's set is caught_comparators' (ideal, zero backlash):
+  /// with backlash, X' = 0 all through the play holds the shifted comparator
+  /// 0.1 MU from the latch's closing level while the secondary runs, and
+  /// latched catches that must not be (measured on seed 2752: three
+  /// self-locking scenes with backlash failed by 10.6 … 36.9 %).
+  bool caught_sets_latch() const { return level_ == Level::ideal && !patch_.dead_zone; }
 
   /// Whether the lock's reaction is latched until the secondary has stopped (add_secondary).
   bool locks_latched() const { return !patch_.dead_zone || level_ == Level::ideal; }

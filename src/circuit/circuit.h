@@ -31,6 +31,8 @@ struct AmplifierInput {
   std::string released_by = {};
   /// The scene feature its potentiometer serves ("damping"), empty for the core.
   std::string feature = {};
+  /// With released_by: the latch's set node, where it is not switched_by.
+  std::string latched_by = {};
 };
 
 /// An inverting integrator or summer of the machine, with its output node.

@@ -90,8 +90,8 @@ std::string amplifier_instances(const Amplifier& a) {
       const std::string after = node + "_sw";
       text += fmt::format("Xsw_{} {} {} {} gp_switch\n", node, node, after, in.switched_by);
       if (!in.released_by.empty())
-        text += fmt::format("Xlatch_{} {} {} {} {} gp_latch\n", node, node, after, in.switched_by,
-                            in.released_by);
+        text += fmt::format("Xlatch_{} {} {} {} {} gp_latch\n", node, node, after,
+                            in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by);
       node = after;
     }
     pins += node + " ";

@@ -206,6 +206,7 @@ class Allocator {
   /// latch); its switch lies in parallel with the engagement switch.
   void latch(Connection& wire, const circuit::AmplifierInput& in) {
     const std::string name = "latch_" + wire.to_instance + "_" + std::to_string(wire.input);
+    const std::string set = in.latched_by.empty() ? in.switched_by : in.latched_by;
     const std::string& feature = in.feature;
     const bool use_summer = free_on_first(ElementKind::inverter) <= 0 && free_on_first(ElementKind::summer) > 0;
     const Element& inv = take(use_summer ? ElementKind::summer : ElementKind::inverter, name + "_reset_n",
@@ -216,10 +217,10 @@ class Allocator {
         take(ElementKind::comparator, name,
              fmt::format("lock latch: input A from {} ({}, set), input B from {} (−{}, reset), its switch fed back "
                          "for ±1 MU of hysteresis (closed above 1.45 MU, open below −0.55 MU), in parallel with the "
-                         "switch of {}", label(in.switched_by), in.switched_by, inverter, in.released_by,
-                         label(in.switched_by)),
+                         "switch of {}", label(set), set, inverter, in.released_by, label(in.switched_by)),
              feature);
     wire.latch_label = cmp.label;
+    wire.latch_set_node = set;
     wire.latch_reset_node = in.released_by;
   }
 

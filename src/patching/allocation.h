@@ -36,8 +36,9 @@ struct Connection {
   std::string switch_label;              ///< the comparator whose switch it passes, or empty
   std::string switch_node;               ///< the circuit node that drives that switch
   /// A latch in parallel with that switch (the zero-backlash lock): the
-  /// comparator whose switch it is, and the node that releases it.
-  std::string latch_label, latch_reset_node;
+  /// comparator whose switch it is, the node that sets it (the switch's own,
+  /// or a comparator of its own) and the node that releases it.
+  std::string latch_label, latch_set_node, latch_reset_node;
   std::string to_instance, to_label;     ///< the amplifier ("int_p") and its element ("INT1")
   int input = 0;                         ///< the circuit's input index, 1-based
   int weight = 1;

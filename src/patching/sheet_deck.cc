@@ -53,7 +53,9 @@ bool is_amplifier(const Part& p) { return p.kind == "integrator" || p.kind == "s
 /// while set and reset both held, 1.35 % of full scale; with a lag of 1e-4
 /// of the run 0.051 %). A lag far below ngspice's largest step lets the
 /// trapezoidal rule ring it over (bild6c on classic, latched with backlash:
-/// 55 % at 1e-6 of the run, 0.018 % at 1e-4).
+/// 55 % at 1e-6 of the run, 0.018 % at 1e-4). A set shorter than the lag
+/// never closes the latch (random-25-017-self-locking's shallow catch: ω_s
+/// 9.2 % of full scale at 1e-4 of the run on every machine, a pass at 3e-5).
 std::string comparator_model(Level level, double unit, bool held, double lag) {
   const std::string name = held ? "gp_machine_comparator_held" : "gp_machine_comparator";
   const std::string sum = held ? "(time > 0 ? v(a) + v(b) : 1)" : "(v(a) + v(b))";
@@ -257,7 +259,7 @@ std::string library(const Wiring& w, const Nets& nets, Level level, const Machin
   for (const std::string& b : blocks) text += "\n" + circuit::render_block(level, b, m);
   if (w.count("comparator")) text += "\n" + comparator_model(level, m.unit_volts, false, 0);
   if (std::any_of(w.parts.begin(), w.parts.end(), [&](const Part& p) { return holds(p, nets); }))
-    text += "\n" + comparator_model(level, m.unit_volts, true, 1e-4 * w.beta * w.duration);
+    text += "\n" + comparator_model(level, m.unit_volts, true, 3e-5 * w.beta * w.duration);
   if (w.count("diode")) text += "\n" + diode_model(level);
   return text;
 }

@@ -599,9 +599,11 @@ class Wirer {
   /// holding comparator adds its own output to that, so it turns to −1 MU
   /// once set (engaged, not stopped), to +1 MU once reset (stopped, not
   /// engaged) and keeps its state in between; a second comparator on the same
-  /// inputs passes the signal while latched, else the lock's own switch.
-  Jack latched(const std::string& set, const std::string& reset, const Jack& signal) {
-    const Jack lock = switched(set, signal);
+  /// inputs passes the signal while latched, else the lock's own switch
+  /// (switched by `lock_switch`; `set` is its own comparator where it differs).
+  Jack latched(const std::string& lock_switch, const std::string& set, const std::string& reset,
+               const Jack& signal) {
+    const Jack lock = switched(lock_switch, signal);
     const std::string sum = take(ElementKind::summer, "lock latch: −(set − reset), each a decision of ±1 MU").label;
     part(sum).signal = "−(set − reset)";
     const Jack engaged = decision(set), not_stopped = switched(reset, reference(-1), reference(1));
@@ -645,7 +647,7 @@ class Wirer {
                                fmt::format("{} = {:.5g}", to_string(*in.potentiometer), value));
       }
       if (!in.released_by.empty()) {
-        from = latched(in.switched_by, in.released_by, from);
+        from = latched(in.switched_by, in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by, from);
       } else if (!in.switched_by.empty()) {
         from = switched(in.switched_by, from);
       }
