@@ -27,8 +27,8 @@ struct ComponentShare {
 /// share); the components whose share matters are measured again at the
 /// profile's largest size. A machine's trace is the perfect one plus every
 /// component's deviation interpolated at its drawn value, judged in
-/// verify's tube. The dominant component is the one whose share changes the
-/// signal's amplitude error most: what ablation (removing it) confirms.
+/// verify's tube. The dominant component is the one whose removal from
+/// every machine lowers the worst signal's p90 most: what ablation confirms.
 struct ErrorBudget {
   std::string scene, machine;
   double offset_rms_volts = 0;
@@ -41,7 +41,7 @@ struct ErrorBudget {
   std::vector<std::string> twice;      ///< components measured also at their largest size
   std::size_t runs = 0;                ///< ngspice runs, the perfect deck's included
   Signal worst_signal{};
-  std::string dominant;                ///< the share that weighs most in worst_signal's RSS
+  std::string dominant;                ///< the component whose removal lowers worst_signal's p90 most
   /// What would shrink a prediction beyond the tolerance, each change only when
   /// it moves the prediction by at least a tenth of the excess; and whether the
   /// perfect-components error alone exceeds the tolerance.
