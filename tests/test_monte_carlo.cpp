@@ -123,7 +123,11 @@ double ablated_error(const Scene& s, const verify::VerifyOptions& o, const toler
 }  // namespace
 
 TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[tolerance][slow]") {
-  const std::string name = GENERATE("bild5b", "bild6a", "bild6c");
+  // Scenes with one clearly heaviest share in the worst signal: on bild6a the
+  // two heaviest in omega_p lie within 15 % of each other (`gearpatch budget`:
+  // gp_inv_m0 0.265 %, gp_amp_xp 0.231 % of full scale), too close for one
+  // deck's ablation to order.
+  const std::string name = GENERATE("bild5b", "bild6c");
   CAPTURE(name);
   const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
   verify::VerifyOptions o;
@@ -148,8 +152,8 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
   const double without_second = ablated_error(s, o, b, second);
   CAPTURE(as_is, without_dominant, without_second);
   CHECK(std::abs(without_dominant - as_is) > std::abs(without_second - as_is));
-  // The budget is a root-sum-square estimate of the spread, not a bound; the
-  // profile's one deck lies below twice it. (How close it lies to the
+  // The budget is the p90 of composed machines, not a bound; the profile's
+  // one deck lies below twice it. (How close it lies to the
   // Monte Carlo's p90 is measured in docs/hardware-level.md: a single draw
   // can sit far below it, bild6c 16 % against 54 % when the offsets' shares
   // partly cancel.)

@@ -28,11 +28,15 @@ int run_budget(const std::vector<std::string>& args) {
                        "The error budget of the hardware level before any Monte Carlo: each signal's\n"
                        "error with perfect components (every offset zero, every setting exact), and\n"
                        "the share of each component tolerance (one amplifier's offset at the\n"
-                       "profile's RMS size, both signs; the potentiometers' setting resolution),\n"
-                       "measured one at a time with ngspice and added root-sum-square. Names the\n"
+                       "profile's RMS size, both signs, the heaviest also at the largest size; the\n"
+                       "potentiometers' setting resolution), measured one at a time with ngspice.\n"
+                       "The prediction is the p90 of the error of 1000 machines drawn as\n"
+                       "monte-carlo draws them, each composed without a run from the perfect deck's\n"
+                       "traces and every tolerance's measured deviation at its drawn value. Names the\n"
                        "dominant component and what would shrink the budget. The budget judges\n"
-                       "nothing: it is a prediction of each signal's error that verify --budget\n"
-                       "prints beside the measured error, which verify judges against the tolerance.",
+                       "nothing: it predicts the Monte Carlo's p90 of each signal's error, which\n"
+                       "verify --budget prints beside the measured error; verify judges that against\n"
+                       "the tolerance.",
                        options,
                        {"gearpatch budget scenes/bild6c.ini --machine the-analog-thing --autoscale",
                         "gearpatch budget scenes/bild5b.ini --machine classic --json budget.json"},

@@ -12,7 +12,7 @@ const std::vector<Command>& commands() {
       {"bench", "speed/accuracy trade of every knob: tables, --json, --plot (work-precision)", run_bench},
       {"reduce", "section 2: n elastic stages in series -> one stiffness and damping", run_reduce},
       {"sweep", "vary scene keys (--set KEY=V1,V2 or ranges): figures per point, overlay plots", run_sweep},
-      {"budget", "the hardware error budget: each component tolerance's share, RSS, the dominant one", run_budget},
+      {"budget", "the hardware error budget: each component tolerance's share, the p90 of machines composed from them, the dominant one", run_budget},
       {"monte-carlo", "tolerance Monte Carlo: N hardware runs on drawn components; yield, spread, --plot", run_monte_carlo},
       {"merge", "the table and plots of a run folder whose jobs ran elsewhere (GNU Parallel, Slurm)", run_merge},
       {"figures", "the paper's Bild 5a-c and 6a-c from the example scenes (-o docs/figures)", run_figures},

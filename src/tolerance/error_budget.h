@@ -17,30 +17,39 @@ struct ComponentShare {
   double largest() const;
 };
 
-/// The error a scene should show on a machine, predicted before any
-/// Monte Carlo: the nominal error with perfect components (every offset
-/// zero, every setting exact: bandwidth, diodes, δ, hysteresis remain), plus
-/// the root-sum-square of each tolerance's share. A share is measured by
-/// injecting that one imperfection at its RMS size into the perfect deck,
-/// with both signs when the profile's offsets take random signs, and taking
-/// the larger distance the signal moves (against the perfect deck's, in
-/// verify's tube). The dominant component is the one whose share changes the
-/// signal's amplitude error most: what ablation (removing it) confirms.
+/// The error a scene should show on a machine, predicted before any Monte
+/// Carlo: the p90 of the error of many machines drawn as the Monte Carlo
+/// draws them, each composed without a run from one-at-a-time measurements.
+/// The perfect deck (every offset zero, every setting exact: bandwidth,
+/// diodes, δ, hysteresis remain) gives the base traces; each tolerance,
+/// injected alone at its RMS size (both signs when the profile's offsets
+/// take random signs), gives how far it moves each signal's trace (its
+/// share); the components whose share matters are measured again at the
+/// profile's largest size. A machine's trace is the perfect one plus every
+/// component's deviation interpolated at its drawn value, judged in
+/// verify's tube. The dominant component is the one whose removal from
+/// every machine lowers the worst signal's p90 most: what ablation confirms.
 struct ErrorBudget {
   std::string scene, machine;
   double offset_rms_volts = 0;
   std::map<Signal, double> nominal;
   std::vector<ComponentShare> shares;  ///< largest first
-  std::map<Signal, double> predicted;  ///< nominal + RSS of the shares' `moved`
+  std::map<Signal, double> predicted;  ///< p90 over the composed machines of each signal's error
+  std::map<Signal, double> rss;        ///< nominal + root-sum-square of the shares' `moved`: a cruder estimate
+  double worst_machine = 0;            ///< p90 over the composed machines of each one's worst signal
+  std::size_t machines = 0;            ///< machines composed
+  std::vector<std::string> twice;      ///< components measured also at their largest size
+  std::size_t runs = 0;                ///< ngspice runs, the perfect deck's included
   Signal worst_signal{};
-  std::string dominant;                ///< the share that weighs most in worst_signal's RSS
+  std::string dominant;                ///< the component whose removal lowers worst_signal's p90 most
   /// What would shrink a prediction beyond the tolerance, each change only when
   /// it moves the prediction by at least a tenth of the excess; and whether the
   /// perfect-components error alone exceeds the tolerance.
   std::vector<std::string> advice;
   std::vector<std::string> failed;     ///< variants that could not run
 
-  double worst() const { return predicted.at(worst_signal); }
+  /// The prediction of the Monte Carlo's p90 of the worst signal.
+  double worst() const { return worst_machine; }
 };
 
 /// How far a changed deck moves each signal against the perfect deck's
