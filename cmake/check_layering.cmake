@@ -2,7 +2,7 @@
 # includes" (a module is a folder of src/) has no cycle, and the modules below
 # the scene never reach scene/, not even through another module: the scene is
 # converted once, at the top (scene/scene_inputs.h); and only the command line
-# includes bench/ (a library of its own, outside gearpatch_core); and only
+# includes tradeoff/ (a library of its own, outside gearpatch_core); and only
 # the command line prints: below cli/ text for the terminal goes through
 # common/notices.h or into an Error.
 # Run: cmake -DSOURCE_DIR=<repo> -P cmake/check_layering.cmake
@@ -74,8 +74,8 @@ foreach(start ${BELOW_SCENE})
   endwhile()
 endforeach()
 foreach(m ${MODULES})
-  if(NOT m STREQUAL "cli" AND "bench" IN_LIST EDGES_${m})
-    message(FATAL_ERROR "${m} includes bench/: only the command line may (bench is not in gearpatch_core)")
+  if(NOT m STREQUAL "cli" AND "tradeoff" IN_LIST EDGES_${m})
+    message(FATAL_ERROR "${m} includes tradeoff/: only the command line may (tradeoff is not in gearpatch_core)")
   endif()
 endforeach()
 # Only cli/ prints: no printf/puts family, fmt::print or standard stream below it.
@@ -92,4 +92,4 @@ foreach(file ${FILES})
 endforeach()
 list(LENGTH MODULES count)
 message(STATUS "layering: ${count} modules, acyclic, none of ${BELOW_SCENE} reaches scene/, "
-               "only cli includes bench/, only cli prints")
+               "only cli includes tradeoff/, only cli prints")

@@ -8,9 +8,9 @@
 #include <set>
 #include <nlohmann/json.hpp>
 
-#include "bench/bench.h"
-#include "bench/bench_report.h"
-#include "bench/pareto.h"
+#include "tradeoff/tradeoff.h"
+#include "tradeoff/tradeoff_report.h"
+#include "tradeoff/pareto.h"
 #include "circuit/quality.h"
 #include "common/atomic_file.h"
 #include "common/gnuplot.h"
@@ -40,7 +40,7 @@ bool finite_number(const json& j) { return j.is_number() && std::isfinite(j.get<
 }  // namespace
 
 TEST_CASE("the Pareto front of a hand-made point set", "[bench]") {
-  using bench::TradePoint;
+  using tradeoff::TradePoint;
   const std::vector<TradePoint> points = {
       {1.0, 1.0},    // 0: front (fastest among the accurate ones)
       {2.0, 0.5},    // 1: front
@@ -53,22 +53,22 @@ TEST_CASE("the Pareto front of a hand-made point set", "[bench]") {
       {5.0, 0.1},    // 8: dominated by 6 (same error, slower)
   };
   const std::vector<bool> expected = {true, true, false, true, true, false, true, false, false};
-  CHECK(bench::pareto_front(points) == expected);
-  CHECK(bench::dominates(points[1], points[2]));
-  CHECK_FALSE(bench::dominates(points[1], points[4]));
-  CHECK_FALSE(bench::dominates(points[5], points[0]));
-  CHECK(bench::pareto_front({}).empty());
+  CHECK(tradeoff::pareto_front(points) == expected);
+  CHECK(tradeoff::dominates(points[1], points[2]));
+  CHECK_FALSE(tradeoff::dominates(points[1], points[4]));
+  CHECK_FALSE(tradeoff::dominates(points[5], points[0]));
+  CHECK(tradeoff::pareto_front({}).empty());
   // With a resolution, differences inside it are ties: 5 % faster and 0.5 %
   // less accurate is neither better nor worse at 10 % / 1 %.
-  const bench::Resolution resolution{0.10, 0.01};
-  CHECK_FALSE(bench::dominates({0.95, 1.005}, {1.0, 1.0}, resolution));
-  CHECK_FALSE(bench::dominates({1.0, 1.0}, {0.95, 1.005}, resolution));
-  CHECK(bench::dominates({1.0, 0.5}, {1.05, 1.0}, resolution));   // tie in time, clearly better error
-  CHECK(bench::dominates({0.5, 1.005}, {1.0, 1.0}, resolution));  // clearly faster, tie in error
-  CHECK_FALSE(bench::dominates({0.5, 1.2}, {1.0, 1.0}, resolution));
-  CHECK(bench::pareto_front({{1.0, 1.0}, {0.95, 1.005}, {1.5, 2.0}}, resolution) ==
+  const tradeoff::Resolution resolution{0.10, 0.01};
+  CHECK_FALSE(tradeoff::dominates({0.95, 1.005}, {1.0, 1.0}, resolution));
+  CHECK_FALSE(tradeoff::dominates({1.0, 1.0}, {0.95, 1.005}, resolution));
+  CHECK(tradeoff::dominates({1.0, 0.5}, {1.05, 1.0}, resolution));   // tie in time, clearly better error
+  CHECK(tradeoff::dominates({0.5, 1.005}, {1.0, 1.0}, resolution));  // clearly faster, tie in error
+  CHECK_FALSE(tradeoff::dominates({0.5, 1.2}, {1.0, 1.0}, resolution));
+  CHECK(tradeoff::pareto_front({{1.0, 1.0}, {0.95, 1.005}, {1.5, 2.0}}, resolution) ==
         std::vector<bool>{true, true, false});
-  CHECK(bench::pareto_front({{1, 1}}) == std::vector<bool>{true});
+  CHECK(tradeoff::pareto_front({{1, 1}}) == std::vector<bool>{true});
 }
 
 TEST_CASE("three quality presets ordered from draft to precise with normal as the default", "[bench]") {
@@ -104,7 +104,7 @@ TEST_CASE("three quality presets ordered from draft to precise with normal as th
 }
 
 TEST_CASE("the sweep varies one knob at a time around the defaults", "[bench]") {
-  const auto knobs = bench::standard_knobs();
+  const auto knobs = tradeoff::standard_knobs();
   const circuit::TransientControl normal = circuit::quality_preset("normal").control;
   REQUIRE(!knobs.empty());
   CHECK(knobs.front().family == "default");
@@ -135,12 +135,12 @@ TEST_CASE("the sweep varies one knob at a time around the defaults", "[bench]") 
   CHECK(presets == std::set<std::string>{"draft", "normal", "precise"});
   CHECK(knobs.front().presets == std::vector<std::string>{"normal"});
 
-  const auto only = bench::select_knobs(knobs, {"reltol"});
+  const auto only = tradeoff::select_knobs(knobs, {"reltol"});
   REQUIRE(only.size() == 4);
   CHECK(only.front().family == "default");
-  CHECK(bench::standard_tolerances().size() == 12);
-  CHECK(bench::standard_tolerances().front() == Approx(1e-3));
-  CHECK(bench::standard_tolerances().back() == Approx(1e-14));
+  CHECK(tradeoff::standard_tolerances().size() == 12);
+  CHECK(tradeoff::standard_tolerances().front() == Approx(1e-3));
+  CHECK(tradeoff::standard_tolerances().back() == Approx(1e-14));
 }
 
 TEST_CASE("the scaled difference of two trajectories divides by each full scale", "[bench]") {
@@ -149,14 +149,14 @@ TEST_CASE("the scaled difference of two trajectories divides by each full scale"
   b = a;
   b.samples[1].omega_s += 0.02;  // 1 % of 2
   b.samples[1].m0 -= 0.25;       // 2.5 % of 10
-  CHECK(bench::scaled_difference(a, b, {1, 2, 0.2, 10}) == Approx(0.025));
-  CHECK(bench::scaled_difference(a, a, {1, 2, 0.2, 10}) == 0);
+  CHECK(tradeoff::scaled_difference(a, b, {1, 2, 0.2, 10}) == Approx(0.025));
+  CHECK(tradeoff::scaled_difference(a, a, {1, 2, 0.2, 10}) == 0);
   b.samples.pop_back();
-  CHECK_THROWS_AS(bench::scaled_difference(a, b, {1, 2, 0.2, 10}), Error);
+  CHECK_THROWS_AS(tradeoff::scaled_difference(a, b, {1, 2, 0.2, 10}), Error);
 }
 
 TEST_CASE("the exact against adaptive comparison picks the run closest to the exact accuracy", "[bench]") {
-  std::vector<bench::Point> points(4);
+  std::vector<tradeoff::Point> points(4);
   points[0].family = "exact";
   points[0].error = 1e-15;
   points[0].seconds = 1e-5;
@@ -168,7 +168,7 @@ TEST_CASE("the exact against adaptive comparison picks the run closest to the ex
     points[i + 1].error = errors[i];
     points[i + 1].seconds = 1e-4 * (i + 1);
   }
-  const auto c = bench::compare_solvers(points);
+  const auto c = tradeoff::compare_solvers(points);
   REQUIRE(c.matched);
   CHECK(c.matched->tolerance == 1e-12);
   CHECK(c.matched->speedup == Approx(30));
@@ -178,14 +178,14 @@ TEST_CASE("the exact against adaptive comparison picks the run closest to the ex
 }
 
 TEST_CASE("the adaptive solver errs less as its tolerance tightens in the bench measurement", "[bench]") {
-  bench::BenchOptions o;
+  tradeoff::BenchOptions o;
   o.scene_files = {testing::source_path("scenes/bild6a.ini"), testing::source_path("scenes/driven.ini")};
   o.tolerances = {1e-3, 1e-5, 1e-7, 1e-9, 1e-11};
   o.knobs.clear();
   o.min_seconds = 0.001;
   o.repetitions = 1;
   auto ngspice = spice::make_batch_ngspice();
-  const auto r = bench::run_bench(o, *ngspice);
+  const auto r = tradeoff::run_bench(o, *ngspice);
   REQUIRE(r.scenes.size() == 2);
   for (const auto& s : r.scenes) {
     double previous = INFINITY;
@@ -203,24 +203,24 @@ TEST_CASE("the adaptive solver errs less as its tolerance tightens in the bench 
 }
 
 TEST_CASE("a small bench run writes JSON with the machine and finite numbers", "[bench]") {
-  bench::BenchOptions o;
+  tradeoff::BenchOptions o;
   o.scene_files = {testing::source_path("scenes/bild5b.ini")};
   o.tolerances = {1e-3, 1e-6};
-  o.knobs = bench::select_knobs(bench::standard_knobs(), {"method"});  // default and trap
+  o.knobs = tradeoff::select_knobs(tradeoff::standard_knobs(), {"method"});  // default and trap
   REQUIRE(o.knobs.size() == 2);
   o.min_seconds = 0.001;
   o.repetitions = 1;
   o.ngspice_repetitions = 1;
-  o.machine = bench::collect_machine_info();
+  o.host = tradeoff::collect_host_info();
   o.command = "test";
   std::vector<std::string> progress;
   o.progress = [&](const std::string& line) { progress.push_back(line); };
   auto ngspice = spice::make_batch_ngspice();
-  const auto r = bench::run_bench(o, *ngspice);
+  const auto r = tradeoff::run_bench(o, *ngspice);
   CHECK(!progress.empty());
   CHECK(progress.front().find("scene 1/1 bild5b") != std::string::npos);
 
-  const json j = bench::to_json(r);
+  const json j = tradeoff::to_json(r);
   for (const char* key : {"machine", "command", "method", "tolerances", "knobs", "scenes", "aggregate",
                           "presets", "default_on_pareto_front"})
     CHECK(j.contains(key));
@@ -258,21 +258,21 @@ TEST_CASE("a small bench run writes JSON with the machine and finite numbers", "
   CHECK(j["presets"][0]["name"] == "normal");
   CHECK(j["default_on_pareto_front"] == r.default_on_front);
 
-  const std::string table = bench::to_table(r);
+  const std::string table = tradeoff::to_table(r);
   CHECK(table.find("scene bild5b") != std::string::npos);
   CHECK(table.find(r.knobs[1].label) != std::string::npos);
-  const std::string markdown = bench::to_markdown(r, "plot.png");
+  const std::string markdown = tradeoff::to_markdown(r, "plot.png");
   CHECK(markdown.find("![work-precision plot") != std::string::npos);
   CHECK(markdown.find("| bild5b |") != std::string::npos);
 
-  CHECK(bench::plot_image(r, plot_format("plot.svg")).find("<svg") != std::string::npos);
+  CHECK(tradeoff::plot_image(r, plot_format("plot.svg")).find("<svg") != std::string::npos);
   // A scene name and a CPU model are drawn as text, never run.
   const std::string ran = temp_file("ran");
   fs::remove(ran);
-  bench::BenchResult evil = r;
+  tradeoff::BenchResult evil = r;
   evil.scenes[0].scene = "s'; system \"touch " + ran + "\"; print '\nset title \"@x\"";
-  evil.machine.cpu_model = "cpu'; system \"touch " + ran + "\"; print '";
-  const std::string image = bench::plot_image(evil, "svg");
+  evil.host.cpu_model = "cpu'; system \"touch " + ran + "\"; print '";
+  const std::string image = tradeoff::plot_image(evil, "svg");
   CHECK_FALSE(fs::exists(ran));
   CHECK_THAT(image, Catch::Contains("s'; system \"touch " + ran + "\"; print ' set title \"@x\""));
   CHECK_THAT(image, Catch::Contains("cpu'; system \"touch " + ran + "\"; print '"));

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "tolerance/composed_machines.h"
+#include "component_spread/composed_machines.h"
 #include "verify/tube.h"
 #include "verify/verify.h"
 
 using namespace gearpatch;
-using tolerance::TraceModel;
+using component_spread::TraceModel;
 
 namespace {
 
@@ -26,8 +26,8 @@ TraceModel flat_model(double half_width) {
 }
 
 /// The departure `value · shape(t)` of the one signal, as an excess without a shift.
-tolerance::Departures trace(const TraceModel& m, double value, double (*shape)(double)) {
-  tolerance::Departure d;
+component_spread::Departures trace(const TraceModel& m, double value, double (*shape)(double)) {
+  component_spread::Departure d;
   for (double t : m.t) d.excess.push_back(value * shape(t)), d.shift.push_back(0);
   return {{Signal::omega_p, d}};
 }
@@ -37,43 +37,43 @@ double ramp(double t) { return t; }
 
 }  // namespace
 
-TEST_CASE("two independent linear components compose to the closed-form p90 of their sum", "[tolerance]") {
+TEST_CASE("two independent linear components compose to the closed-form p90 of their sum", "[component_spread]") {
   TraceModel m = flat_model(0);
   // Each measured at ±1, moving the signal by ±1 everywhere: a machine errs |x1 + x2|.
   for (const char* name : {"a", "b"})
-    tolerance::add_component(m, name, {1, -1}, {trace(m, 1, constant), trace(m, -1, constant)});
+    component_spread::add_component(m, name, {1, -1}, {trace(m, 1, constant), trace(m, -1, constant)});
   // x1, x2 uniform in [-1, 1] (a fine grid of both): the sum is triangular on
   // [-2, 2], P(|x1 + x2| > s) = (2 − s)² / 4, so its p90 is 2 − √0.4.
   std::vector<std::vector<double>> machines;
   const int n = 200;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) machines.push_back({-1 + (2 * i + 1.0) / n, -1 + (2 * j + 1.0) / n});
-  const tolerance::ComposedP90 p90 = tolerance::composed_p90(m, machines);
+  const component_spread::ComposedP90 p90 = component_spread::composed_p90(m, machines);
   CHECK(p90.machines == machines.size());
   CHECK(p90.signals.at(Signal::omega_p) == Approx(2 - std::sqrt(0.4)).margin(0.01));
   CHECK(p90.worst == Approx(p90.signals.at(Signal::omega_p)));
   // The tube's range is not an error: ±0.25 of room lowers every machine's error by 0.25.
   TraceModel wide = flat_model(0.25);
   wide.components = m.components;
-  CHECK(tolerance::composed_p90(wide, machines).worst == Approx(2 - std::sqrt(0.4) - 0.25).margin(0.01));
+  CHECK(component_spread::composed_p90(wide, machines).worst == Approx(2 - std::sqrt(0.4) - 0.25).margin(0.01));
 }
 
-TEST_CASE("a component measured at two sizes is followed between them and continued past them", "[tolerance]") {
+TEST_CASE("a component measured at two sizes is followed between them and continued past them", "[component_spread]") {
   TraceModel m = flat_model(0);
   // Measured at 1 and 2 (one sign): the deviation grows from 1 to 4, faster than linearly.
-  tolerance::add_component(m, "threshold", {2, 1}, {trace(m, 4, ramp), trace(m, 1, ramp)});
+  component_spread::add_component(m, "threshold", {2, 1}, {trace(m, 4, ramp), trace(m, 1, ramp)});
   REQUIRE(m.components.front().values == std::vector<double>{0, 1, 2});
   // The ramp's largest deviation is at t = 1: the value interpolated between the sizes.
-  CHECK(tolerance::composed_errors(m, {1.5}).at(Signal::omega_p) == Approx(2.5));
-  CHECK(tolerance::composed_errors(m, {0.5}).at(Signal::omega_p) == Approx(0.5));
-  CHECK(tolerance::composed_errors(m, {3}).at(Signal::omega_p) == Approx(7));     // 4 + the last slope 3
-  CHECK(tolerance::composed_errors(m, {-0.5}).at(Signal::omega_p) == Approx(0.5)); // the first segment continued
-  CHECK(tolerance::composed_errors(m, {0}).at(Signal::omega_p) == Approx(0));
+  CHECK(component_spread::composed_errors(m, {1.5}).at(Signal::omega_p) == Approx(2.5));
+  CHECK(component_spread::composed_errors(m, {0.5}).at(Signal::omega_p) == Approx(0.5));
+  CHECK(component_spread::composed_errors(m, {3}).at(Signal::omega_p) == Approx(7));     // 4 + the last slope 3
+  CHECK(component_spread::composed_errors(m, {-0.5}).at(Signal::omega_p) == Approx(0.5)); // the first segment continued
+  CHECK(component_spread::composed_errors(m, {0}).at(Signal::omega_p) == Approx(0));
 }
 
 TEST_CASE("a variant shifted in time is a shift of the perfect trace, a flat one moved is an excess, and shifts "
           "of several components add as shifts",
-          "[tolerance]") {
+          "[component_spread]") {
   // A ramp of slope 1 on t = 0 … 1; the tube ±0.2 in time, ±0.01 in value.
   TraceModel m = flat_model(0);
   m.perfect[Signal::omega_p] = m.t;
@@ -82,7 +82,7 @@ TEST_CASE("a variant shifted in time is a shift of the perfect trace, a flat one
   verify::VerifyResult late;
   late.circuit.t = m.t;
   for (double t : m.t) late.circuit.signals[Signal::omega_p].push_back(std::max(0.0, t - 0.1));  // 0.1 late
-  const tolerance::Departure d = tolerance::departures(m, late).at(Signal::omega_p);
+  const component_spread::Departure d = component_spread::departures(m, late).at(Signal::omega_p);
   REQUIRE(d.shift.size() == m.t.size());
   // The nearest point in the tube's geometry: almost all shift (0.2 s weigh as much as 0.01 in value).
   CHECK(d.shift[5] == Approx(0.1).margin(1e-3));
@@ -94,7 +94,7 @@ TEST_CASE("a variant shifted in time is a shift of the perfect trace, a flat one
   verify::VerifyResult moved;
   moved.circuit.t = {0, 0.25, 1};  // its own grid, interpolated onto the perfect deck's
   moved.circuit.signals[Signal::omega_p] = {0, 0.01, 0.01};
-  const tolerance::Departure e = tolerance::departures(flat, moved).at(Signal::omega_p);
+  const component_spread::Departure e = component_spread::departures(flat, moved).at(Signal::omega_p);
   CHECK(e.shift[1] == Approx(0).margin(1e-12));
   CHECK(e.excess[1] == Approx(0.004));
   CHECK(e.excess[10] == Approx(0.01));
@@ -104,14 +104,14 @@ TEST_CASE("a variant shifted in time is a shift of the perfect trace, a flat one
   // here; for a pulse it would leave a hole, which shifts do not).
   for (std::size_t i = 0; i < m.t.size(); ++i)
     m.low[Signal::omega_p][i] = std::max(0.0, m.t[i] - 0.15), m.high[Signal::omega_p][i] = std::min(1.0, m.t[i] + 0.15);
-  for (const char* name : {"a", "b"}) tolerance::add_component(m, name, {1}, {tolerance::departures(m, late)});
-  CHECK(tolerance::composed_errors(m, {1, 1}).at(Signal::omega_p) == Approx(0.05).margin(1e-3));
-  CHECK(tolerance::composed_errors(m, {1, 0}).at(Signal::omega_p) == Approx(0).margin(1e-12));
+  for (const char* name : {"a", "b"}) component_spread::add_component(m, name, {1}, {component_spread::departures(m, late)});
+  CHECK(component_spread::composed_errors(m, {1, 1}).at(Signal::omega_p) == Approx(0.05).margin(1e-3));
+  CHECK(component_spread::composed_errors(m, {1, 0}).at(Signal::omega_p) == Approx(0).margin(1e-12));
 }
 
 TEST_CASE("two components each moving a narrow pulse a little later compose to the pulse moved by both, not to "
           "a hole",
-          "[tolerance]") {
+          "[component_spread]") {
   // A triangle pulse of height 1 at t = 0.5 on a fine grid; each component makes it 0.02 late.
   TraceModel m;
   for (int i = 0; i <= 100; ++i) m.t.push_back(0.01 * i);
@@ -128,8 +128,8 @@ TEST_CASE("two components each moving a narrow pulse a little later compose to t
   verify::VerifyResult late;
   late.circuit.t = m.t;
   for (double t : m.t) late.circuit.signals[Signal::m0].push_back(pulse(t, 0.52));
-  for (const char* name : {"a", "b"}) tolerance::add_component(m, name, {1}, {tolerance::departures(m, late)});
+  for (const char* name : {"a", "b"}) component_spread::add_component(m, name, {1}, {component_spread::departures(m, late)});
   // 0.04 late in all: within the tube's ±0.05, so no error; the pointwise sum
   // of both differences would dip to −1 at the pulse's top.
-  CHECK(tolerance::composed_errors(m, {1, 1}).at(Signal::m0) == Approx(0).margin(0.02));
+  CHECK(component_spread::composed_errors(m, {1, 1}).at(Signal::m0) == Approx(0).margin(0.02));
 }

@@ -8,7 +8,7 @@
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
 #include "circuit/stribeck_generator.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "spice/simulator.h"
 #include "support.h"
 #include "verify/report.h"
@@ -41,10 +41,10 @@ TEST_CASE("every drive scene passes verify at the ideal level", "[drive][ngspice
 
 TEST_CASE("each drive feature gets its circuit only when the scene has it", "[drive]") {
   const auto deck = [](const std::string& name, ScalingMethod method = ScalingMethod::solved) {
-    PatchOptions o;
+    ScalingOptions o;
     o.method = method;
-    const Patch patch = make_patch(drive_scene(name), o);
-    return circuit::render_netlist(circuit::build_circuit(patch, circuit::Level::ideal));
+    const ScaledProgram program = scale_program(drive_scene(name), o);
+    return circuit::render_netlist(circuit::build_circuit(program, circuit::Level::ideal));
   };
   const std::string reversal = deck("reversal"), startup = deck("startup"), conveyor = deck("conveyor");
   CHECK(reversal.find("Vdrive_n drive_n 0 PWL(0 0 ") != std::string::npos);
@@ -64,7 +64,7 @@ TEST_CASE("each drive feature gets its circuit only when the scene has it", "[dr
 
 TEST_CASE("the capped law is built from half-wave blocks only when the scene has it", "[drive]") {
   const auto deck = [](const std::string& name) {
-    return circuit::render_netlist(circuit::build_circuit(make_patch(drive_scene(name)), circuit::Level::ideal));
+    return circuit::render_netlist(circuit::build_circuit(scale_program(drive_scene(name)), circuit::Level::ideal));
   };
   CHECK(deck("capped").find("Xcap_half_g cap_g_n cap_g_low cap_push_p gp_halfwave") != std::string::npos);
   CHECK(deck("reversal").find("cap_") == std::string::npos);
@@ -81,7 +81,7 @@ TEST_CASE("the Stribeck function generator follows 1 - exp(-x) at its stated bre
     worst = std::max(worst, std::abs(circuit::stribeck_generator_value(b, x) - -std::expm1(-x)));
   CHECK(worst < 0.007);  // of k_S − k_C (measured 0.0059)
   const std::string deck = circuit::render_netlist(
-      circuit::build_circuit(make_patch(drive_scene("stribeck")), circuit::Level::ideal));
+      circuit::build_circuit(scale_program(drive_scene("stribeck")), circuit::Level::ideal));
   CHECK(deck.find("Xstrib_p16 wp strib_p16 gp_limiter") != std::string::npos);
   CHECK(deck.find("Xstrib_s1 ws strib_s1 gp_limiter") != std::string::npos);
 }

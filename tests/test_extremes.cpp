@@ -11,7 +11,7 @@
 #include "common/error.h"
 #include "model/gear_model.h"
 #include "model/restitution.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "solver/forced_oscillator.h"
 #include "solver/integrate.h"
 #include "support.h"
@@ -257,10 +257,10 @@ TEST_CASE("a play far wider than the contact twist: exact reference; the paper's
   REQUIRE(k.size() >= 2);
   for (double x : k) CHECK(x == Approx(0.5).epsilon(1e-9));
   CHECK(momentum_drift(r) < 1e-12);
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
   o.method = ScalingMethod::paper;
-  const std::string why = refusal([&] { make_patch(scene, o); });
+  const std::string why = refusal([&] { scale_program(scene, o); });
   INFO(why);
   CHECK_THAT(why, Catch::Contains("alpha11") && Catch::Contains("smaller backlash or a softer coupling"));
 }
@@ -548,10 +548,10 @@ TEST_CASE("where the paper's alpha11 is beyond every weight, the solved scaling 
     const std::string why = refusal([&] { verify::verify(extreme(name), paper, *ngspice); });
     INFO(why);
     CHECK_THAT(why, Catch::Contains("alpha11") && Catch::Contains("smaller backlash or a softer coupling"));
-    PatchOptions o;
+    ScalingOptions o;
     o.check_peaks = false;
-    const Patch patch = make_patch(extreme(name), o);
-    const Potentiometer* alpha11 = patch.find(Setting::alpha11);
+    const ScaledProgram program = scale_program(extreme(name), o);
+    const Potentiometer* alpha11 = program.find(Setting::alpha11);
     REQUIRE(alpha11);
     CHECK(alpha11->stages > 0);  // amplifying stages in front of the X' amplifier
     CHECK(alpha11->coefficient > 10);

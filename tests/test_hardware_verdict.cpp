@@ -29,7 +29,7 @@ double worst_measured(const nlohmann::json& j) {
 }  // namespace
 
 TEST_CASE("a hardware run beyond the tolerance but within its predicted budget fails, the budget printed beside it",
-          "[tolerance][slow]") {
+          "[component_spread][slow]") {
   testing::TempFolder dir("verdict-budget");
   std::string output;
   const int status = testing::run_command(kBinary + " verify " + testing::scene_path("bild6c") +
@@ -65,7 +65,7 @@ TEST_CASE("a hardware run beyond the tolerance but within its predicted budget f
 }
 
 TEST_CASE("a deck whose torque potentiometer is 10 % off fails at the hardware default whatever the budget says",
-          "[tolerance]") {
+          "[component_spread]") {
   testing::TempFolder dir("verdict-detuned");
   std::string output;
   const std::string scene = testing::scene_path("bild5b");
@@ -96,7 +96,7 @@ TEST_CASE("a deck whose torque potentiometer is 10 % off fails at the hardware d
 }
 
 TEST_CASE("the Monte Carlo's yield is the share of draws that pass every check, never above a per-check yield",
-          "[tolerance]") {
+          "[component_spread]") {
   testing::TempFolder dir("verdict-yield");
   std::string output;
   const int n = 6;

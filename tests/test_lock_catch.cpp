@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "model/gear_model.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/random_scene.h"
 #include "scene/scene_inputs.h"
 #include "solver/integrate.h"
@@ -36,11 +36,11 @@ TEST_CASE("the a-priori maxima hold the reference's peaks where friction or the 
   // 45: self-locking, wp 1.06 MU.
   for (int index : {3, 23, 45}) {
     const Scene scene = seed_2701(index);
-    const Patch patch = make_patch(scene);
+    const ScaledProgram program = scale_program(scene);
     for (const char* signal : {"Wp", "Ws", "DW"}) {
       INFO(scene.name << " " << signal);
-      REQUIRE(patch.a_priori_peaks.count(signal));
-      CHECK(patch.a_priori_peaks.at(signal) <= 1.0);
+      REQUIRE(program.a_priori_peaks.count(signal));
+      CHECK(program.a_priori_peaks.at(signal) <= 1.0);
     }
   }
 }

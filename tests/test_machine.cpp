@@ -7,7 +7,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "machine/machine_file.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "input_error.h"
 #include "support.h"
 
@@ -19,8 +19,8 @@ std::string profile_error(const std::string& text) {
   return testing::input_error([&] { parse_machine_profile(text, "my.ini"); }, text);
 }
 
-PatchOptions quick() {
-  PatchOptions o;
+ScalingOptions quick() {
+  ScalingOptions o;
   o.check_peaks = false;
   return o;
 }
@@ -68,8 +68,8 @@ TEST_CASE("the generic profile is the machine of a scene without one: the settin
   CHECK(generic.integrator_constants.empty());
   for (const auto& name : testing::example_scenes()) {
     const std::string path = testing::source_path("scenes/" + name + ".ini");
-    CHECK(to_table(make_patch(load_scene(path), quick())) ==
-          to_table(make_patch(load_scene(path, "generic"), quick())));
+    CHECK(to_table(scale_program(load_scene(path), quick())) ==
+          to_table(scale_program(load_scene(path, "generic"), quick())));
   }
 }
 
@@ -85,13 +85,13 @@ TEST_CASE("a scene names its machine; --machine overrides it and machine.* keys 
   const Scene chosen = parse_scene(gear + "[machine]\nprofile = the-analog-thing\n", "s.ini", "classic");
   CHECK(chosen.machine.name == "classic");
   // the scaling works for the machine's k0: integrator coefficients stay within the weights
-  const Patch p = make_patch(on_that, quick());
+  const ScaledProgram p = scale_program(on_that, quick());
   CHECK(p.k0 == 9.9);
   // only β·k0 enters the scaling: the same scene at k0 = 1 runs 9.9 times slower
   Scene at_one = on_that;
   at_one.machine.integrator_constant = 1;
   at_one.machine.integrator_constants.clear();
-  CHECK(p.beta == Approx(make_patch(at_one, quick()).beta / 9.9).epsilon(1e-6));
+  CHECK(p.beta == Approx(scale_program(at_one, quick()).beta / 9.9).epsilon(1e-6));
   for (const auto& pot : p.potentiometers) CHECK(pot.setting <= 1.0);
   try {
     parse_scene(gear + "[machine]\nprofile = the-analog-thin\n", "s.ini");
@@ -146,10 +146,10 @@ TEST_CASE("settings --machine with an unknown machine exits 2 and names the ship
 
 TEST_CASE("a buffered potentiometer is dialled at its setting, an unbuffered one at the loaded setting", "[machine]") {
   const std::string path = testing::source_path("scenes/bild5b.ini");
-  const Patch buffered = make_patch(load_scene(path, "the-analog-thing"), quick());
+  const ScaledProgram buffered = scale_program(load_scene(path, "the-analog-thing"), quick());
   REQUIRE(buffered.machine.potentiometers_buffered);
   for (const auto& pot : buffered.potentiometers) CHECK(pot.loaded_setting == pot.setting);
-  const Patch unbuffered = make_patch(load_scene(path, "generic"), quick());
+  const ScaledProgram unbuffered = scale_program(load_scene(path, "generic"), quick());
   REQUIRE(!unbuffered.machine.potentiometers_buffered);
   const MachineProfile& m = unbuffered.machine;
   for (const auto& pot : unbuffered.potentiometers) {

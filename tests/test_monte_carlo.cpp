@@ -10,14 +10,14 @@
 #include "circuit/circuit.h"
 #include "circuit/netlist.h"
 #include "common/atomic_file.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/scene.h"
 #include "scene/scene_inputs.h"
 #include "support.h"
-#include "tolerance/component_draw.h"
-#include "tolerance/error_budget.h"
-#include "tolerance/monte_carlo_summary.h"
-#include "tolerance/variants.h"
+#include "component_spread/component_draw.h"
+#include "component_spread/error_budget.h"
+#include "component_spread/monte_carlo_summary.h"
+#include "component_spread/variants.h"
 
 namespace fs = std::filesystem;
 using namespace gearpatch;
@@ -28,18 +28,18 @@ const std::string kBinary = GEARPATCH_BINARY;
 
 circuit::Circuit hardware_circuit(const std::string& name, const std::string& machine) {
   const Scene s = load_scene(testing::scene_path(name), machine);
-  return circuit::build_circuit(make_patch(scaling_input(s), {}), circuit::Level::hardware);
+  return circuit::build_circuit(scale_program(scaling_input(s), {}), circuit::Level::hardware);
 }
 
 }  // namespace
 
-TEST_CASE("a draw takes each offset within the profile's spread with a random sign, reproducibly", "[tolerance]") {
+TEST_CASE("a draw takes each offset within the profile's spread with a random sign, reproducibly", "[component_spread]") {
   const circuit::Circuit c = hardware_circuit("bild6c", "the-analog-thing");
   const AmplifierModel& oa = c.machine.amplifier;
   REQUIRE(oa.random_sign);
   int negative = 0, total = 0;
   for (std::uint64_t seed = 1; seed <= 20; ++seed) {
-    const tolerance::ComponentDraw d = tolerance::draw_components(c, tolerance::draw_seed(3, seed));
+    const component_spread::ComponentDraw d = component_spread::draw_components(c, component_spread::draw_seed(3, seed));
     REQUIRE(d.offsets.size() == c.amplifiers.size());
     for (const auto& [name, volts] : d.offsets) {
       CHECK(std::abs(volts) >= std::max(0.0, oa.offset_volts - oa.offset_spread_volts));
@@ -48,24 +48,24 @@ TEST_CASE("a draw takes each offset within the profile's spread with a random si
     }
     for (const auto& [setting, error] : d.setting_errors)
       CHECK(std::abs(error) <= c.machine.potentiometer_resolution / 2);
-    CHECK(d.values() == tolerance::draw_components(c, tolerance::draw_seed(3, seed)).values());
+    CHECK(d.values() == component_spread::draw_components(c, component_spread::draw_seed(3, seed)).values());
   }
   // Half of 20 draws of every amplifier: far from all of one sign.
   CHECK(negative > total / 4);
   CHECK(negative < 3 * total / 4);
   // The draw reaches the deck: the netlist differs from the profile's.
   circuit::Circuit drawn = c;
-  tolerance::apply(tolerance::draw_components(c, 99), drawn);
+  component_spread::apply(component_spread::draw_components(c, 99), drawn);
   CHECK(circuit::render_netlist(drawn, {}) != circuit::render_netlist(c, {}));
 }
 
-TEST_CASE("quantiles interpolate between the sorted values", "[tolerance]") {
-  CHECK(tolerance::quantile({3, 1, 2, 4, 5}, 0.5) == 3);
-  CHECK(tolerance::quantile({1, 2}, 0.9) == Approx(1.9));
-  CHECK(tolerance::quantile({}, 0.9) == 0);
+TEST_CASE("quantiles interpolate between the sorted values", "[component_spread]") {
+  CHECK(component_spread::quantile({3, 1, 2, 4, 5}, 0.5) == 3);
+  CHECK(component_spread::quantile({1, 2}, 0.9) == Approx(1.9));
+  CHECK(component_spread::quantile({}, 0.9) == 0);
 }
 
-TEST_CASE("the GNU Parallel route of a Monte Carlo gives the same merged result as the local pool", "[tolerance]") {
+TEST_CASE("the GNU Parallel route of a Monte Carlo gives the same merged result as the local pool", "[component_spread]") {
   testing::TempFolder dir("mc-parallel");
   std::string output;
   const std::string mc = kBinary + " monte-carlo " + testing::scene_path("bild5b") + " --machine the-analog-thing --autoscale -n 4 --seed 7";
@@ -91,7 +91,7 @@ TEST_CASE("the GNU Parallel route of a Monte Carlo gives the same merged result 
   CHECK(testing::read_json(dir / "other.json").at("signals") != local.at("signals"));
 }
 
-TEST_CASE("a Monte Carlo draw that cannot run is counted and named", "[tolerance]") {
+TEST_CASE("a Monte Carlo draw that cannot run is counted and named", "[component_spread]") {
   testing::TempFolder dir("mc-failed");
   std::string output;
   CHECK(testing::run_command(kBinary + " monte-carlo " + testing::scene_path("bild5b") +
@@ -107,22 +107,22 @@ namespace {
 
 /// The scene's worst-budget signal error on the profile's own deck with the
 /// named component's offset removed (none: the deck as the profile gives it).
-double ablated_error(const Scene& s, const verify::VerifyOptions& o, const tolerance::ErrorBudget& b,
+double ablated_error(const Scene& s, const verify::VerifyOptions& o, const component_spread::ErrorBudget& b,
                      const std::string& component) {
-  tolerance::Variant v{"without " + component, [&](verify::VerifyOptions& options) {
+  component_spread::Variant v{"without " + component, [&](verify::VerifyOptions& options) {
                          if (component.empty()) return;
-                         tolerance::also_alter(options, [&](circuit::Circuit& c) {
+                         component_spread::also_alter(options, [&](circuit::Circuit& c) {
                            c.machine.amplifier.offsets_by_name[component.substr(7)] = 0;
                          });
                        }};
-  const auto runs = tolerance::run_variants(s, o, {v}, 1, "ablation");
+  const auto runs = component_spread::run_variants(s, o, {v}, 1, "ablation");
   REQUIRE(runs[0].result);
-  return tolerance::signal_errors(*runs[0].result).at(b.worst_signal);
+  return component_spread::signal_errors(*runs[0].result).at(b.worst_signal);
 }
 
 }  // namespace
 
-TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[tolerance][slow]") {
+TEST_CASE("the budget's dominant component on the-analog-thing is the one ablation confirms", "[component_spread][slow]") {
   // Scenes with one clearly heaviest share in the worst signal: on bild6a the
   // two heaviest in omega_p lie within 15 % of each other (`gearpatch budget`:
   // gp_inv_m0 0.265 %, gp_amp_xp 0.231 % of full scale), too close for one
@@ -133,13 +133,13 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
   verify::VerifyOptions o;
   o.level = circuit::Level::hardware;
   o.autoscale = true;
-  const tolerance::ErrorBudget b = tolerance::error_budget(s, o, 2);
+  const component_spread::ErrorBudget b = component_spread::error_budget(s, o, 2);
   REQUIRE(b.failed.empty());
   REQUIRE(b.shares.size() > 2);
   // The second-heaviest offset in the worst signal.
   std::string second;
   double weight = -1;
-  for (const tolerance::ComponentShare& share : b.shares)
+  for (const component_spread::ComponentShare& share : b.shares)
     if (share.component != b.dominant && share.component.rfind("offset ", 0) == 0 &&
         share.error.at(b.worst_signal) > weight)
       weight = share.error.at(b.worst_signal), second = share.component;
@@ -161,18 +161,18 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
 }
 
 TEST_CASE("every example scene's deck on the-analog-thing errs within its predicted budget, up to the band the "
-          "budget is checked to (1.5 times)", "[tolerance][slow]") {
+          "budget is checked to (1.5 times)", "[component_spread][slow]") {
   const std::string name = GENERATE("bild5a", "bild5b", "bild5c", "bild6a", "bild6b", "bild6c", "driven");
   CAPTURE(name);
   const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
   verify::VerifyOptions o;
   o.level = circuit::Level::hardware;
-  const tolerance::ErrorBudget b = tolerance::error_budget(s, o, 2);
+  const component_spread::ErrorBudget b = component_spread::error_budget(s, o, 2);
   REQUIRE(b.failed.empty());
   // The deck as the profile gives it: every offset 1 mV, its sign by the amplifier's name,
   // measured in the same tube (the hardware default) as the budget's runs.
-  const tolerance::Variant as_given{"as the profile gives it", [](verify::VerifyOptions&) {}};
-  const auto runs = tolerance::run_variants(s, o, {as_given}, 1, "the-analog-thing");
+  const component_spread::Variant as_given{"as the profile gives it", [](verify::VerifyOptions&) {}};
+  const auto runs = component_spread::run_variants(s, o, {as_given}, 1, "the-analog-thing");
   REQUIRE(runs[0].result);
   // One deck is one machine: the budget's worst signal estimates the p90 of the
   // worst error and is checked against the Monte Carlo to 0.7…1.5
@@ -180,7 +180,7 @@ TEST_CASE("every example scene's deck on the-analog-thing errs within its predic
   // one offset decides an event (bild6c's dphi: 5.4 % against 2.9 %), so the
   // deck's worst error is held to the budget's worst.
   double worst = 0;
-  for (const auto& [signal, error] : tolerance::signal_errors(*runs[0].result)) worst = std::max(worst, error);
+  for (const auto& [signal, error] : component_spread::signal_errors(*runs[0].result)) worst = std::max(worst, error);
   CAPTURE(worst, b.worst());
   CHECK(worst <= 1.5 * b.worst());
 }

@@ -12,7 +12,7 @@
 #include "circuit/quality.h"
 #include "common/atomic_file.h"
 #include "common/error.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "spice/simulator.h"
 #include "support.h"
 
@@ -27,10 +27,10 @@ struct Generated {
 };
 
 Generated generate(const Scene& scene, Level level) {
-  PatchOptions options;
+  ScalingOptions options;
   options.check_peaks = false;
   options.comparator_offset = comparator_offset(level);
-  Circuit c = build_circuit(make_patch(scene, options), level);
+  Circuit c = build_circuit(scale_program(scene, options), level);
   // The step the scene's contact period needs, as the netlist command and verify take it.
   std::string deck = render_netlist(c, scene_control({}, gear_parameters(scene), scene.duration));
   return {std::move(c), std::move(deck)};
@@ -74,7 +74,7 @@ TEST_CASE("ngspice parses and runs every generated deck", "[netlist][ngspice]") 
       // the t = 0 row exists and holds the initial primary speed (.ic, not uic)
       CHECK(time.front() == 0.0);
       CHECK(v.at("v(wp)").front() / scene.machine.unit_volts ==
-            Approx(scene.speed_primary / make_patch(scene).maxima.speed_primary).margin(2e-3));
+            Approx(scene.speed_primary / scale_program(scene).maxima.speed_primary).margin(2e-3));
     }
 }
 
@@ -159,9 +159,9 @@ TEST_CASE("each setting is one .param used by the elements it sets", "[netlist]"
 
 TEST_CASE("the deck refuses a setting that is not finite as an internal error", "[netlist]") {
   const Scene scene = testing::example_scene("bild5b");
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
-  Circuit c = build_circuit(make_patch(scene, o), Level::ideal);
+  Circuit c = build_circuit(scale_program(scene, o), Level::ideal);
   REQUIRE(!c.parameters.empty());
   c.parameters.front().second = std::nan("");
   try {

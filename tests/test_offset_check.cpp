@@ -11,21 +11,21 @@
 #include "circuit/circuit.h"
 #include "scene/scene.h"
 #include "support.h"
-#include "tolerance/component_draw.h"
-#include "tolerance/offset_check.h"
-#include "tolerance/variants.h"
+#include "component_spread/component_draw.h"
+#include "component_spread/offset_check.h"
+#include "component_spread/variants.h"
 
 using namespace gearpatch;
 
 namespace {
 
-tolerance::OffsetCheck check(const std::string& scene, const std::string& machine) {
-  return tolerance::check_offsets(load_scene(testing::scene_path(scene), machine), {}, 2);
+component_spread::OffsetCheck check(const std::string& scene, const std::string& machine) {
+  return component_spread::check_offsets(load_scene(testing::scene_path(scene), machine), {}, 2);
 }
 
-std::vector<std::string> limiting_stages(const tolerance::OffsetCheck& k) {
+std::vector<std::string> limiting_stages(const component_spread::OffsetCheck& k) {
   std::vector<std::string> out;
-  for (const tolerance::StageOffset* s : k.limiting()) out.push_back(s->stage);
+  for (const component_spread::StageOffset* s : k.limiting()) out.push_back(s->stage);
   return out;
 }
 
@@ -35,19 +35,19 @@ double ablation(const std::string& scene_name, const std::string& stage, double 
   const Scene scene = load_scene(testing::scene_path(scene_name), "the-analog-thing");
   verify::VerifyOptions o;
   o.level = circuit::Level::hardware;
-  std::vector<tolerance::Variant> variants;
+  std::vector<component_spread::Variant> variants;
   for (double v : {volts, -volts})
     variants.push_back({stage, [stage, v](verify::VerifyOptions& options) {
-                          tolerance::also_alter(options, [stage, v](circuit::Circuit& c) {
+                          component_spread::also_alter(options, [stage, v](circuit::Circuit& c) {
                             for (const circuit::Amplifier& a : c.amplifiers)
-                              c.machine.amplifier.offsets_by_name[tolerance::amplifier_subckt(a)] = 0;
+                              c.machine.amplifier.offsets_by_name[component_spread::amplifier_subckt(a)] = 0;
                             c.machine.amplifier.offsets_by_name[stage] = v;
                           });
                         }});
   double worst = 0;
-  for (const tolerance::VariantRun& run : tolerance::run_variants(scene, o, variants, 2, "")) {
+  for (const component_spread::VariantRun& run : component_spread::run_variants(scene, o, variants, 2, "")) {
     REQUIRE(run.result);
-    for (const auto& [signal, e] : tolerance::signal_errors(*run.result)) worst = std::max(worst, e);
+    for (const auto& [signal, e] : component_spread::signal_errors(*run.result)) worst = std::max(worst, e);
   }
   return worst;
 }
@@ -55,12 +55,12 @@ double ablation(const std::string& scene_name, const std::string& stage, double 
 }  // namespace
 
 TEST_CASE("on THE ANALOG THING the check names the stage that limits bild6c, as the deck ablation measures it",
-          "[tolerance]") {
-  const tolerance::OffsetCheck k = check("bild6c", "the-analog-thing");
+          "[component_spread]") {
+  const component_spread::OffsetCheck k = check("bild6c", "the-analog-thing");
   REQUIRE(k.skipped.empty());
   CHECK(k.offset_volts == Approx(2e-3));
   REQUIRE(!k.limiting().empty());
-  const tolerance::StageOffset& first = *k.limiting().front();
+  const component_spread::StageOffset& first = *k.limiting().front();
   CHECK(first.stage == "gp_int_s");
   CHECK(first.element == "INT2");
   // the remedy: that offset trimmed as the warning says, measured within the tolerance
@@ -78,28 +78,28 @@ TEST_CASE("on THE ANALOG THING the check names the stage that limits bild6c, as 
   CHECK(first.moved < deck * 2);
 }
 
-TEST_CASE("the check warns for bild5c on THE ANALOG THING and not for the scenes that pass there", "[tolerance]") {
+TEST_CASE("the check warns for bild5c on THE ANALOG THING and not for the scenes that pass there", "[component_spread]") {
   const std::vector<std::string> bild5c = limiting_stages(check("bild5c", "the-analog-thing"));
   CHECK(std::find(bild5c.begin(), bild5c.end(), "gp_amp_xp") != bild5c.end());
   for (const std::string scene : {"bild5a", "bild6a", "driven"}) {
     INFO(scene);
-    const tolerance::OffsetCheck k = check(scene, "the-analog-thing");
+    const component_spread::OffsetCheck k = check(scene, "the-analog-thing");
     CHECK(k.runs > 0);  // measured, not skipped: THAT's offsets are untrimmed
     CHECK(k.limiting().empty());
     CHECK(k.warnings().empty());
   }
 }
 
-TEST_CASE("on the classic machine (trimmed offsets) no example is warned about", "[tolerance]") {
+TEST_CASE("on the classic machine (trimmed offsets) no example is warned about", "[component_spread]") {
   for (const auto& scene : testing::example_scenes()) {
     INFO(scene);
-    const tolerance::OffsetCheck k = check(scene, "classic");
+    const component_spread::OffsetCheck k = check(scene, "classic");
     CHECK(k.warnings().empty());
     CHECK(k.runs <= 3);  // at most one stage reaches the screen
   }
 }
 
-TEST_CASE("verify warns before the ngspice run and carries the check in its JSON", "[tolerance]") {
+TEST_CASE("verify warns before the ngspice run and carries the check in its JSON", "[component_spread]") {
   testing::TempFolder dir("offset-check");
   std::string output;
   testing::run_command(std::string(GEARPATCH_BINARY) + " verify " + testing::scene_path("bild5c") +

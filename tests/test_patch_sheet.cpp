@@ -34,11 +34,11 @@ const std::vector<std::string> sheet_machines = {"the-analog-thing", "model-1", 
 /// The ideal-level sheet of a scene, written to JSON and read back: what a
 /// person's SHEET.json holds.
 Wiring ideal_sheet(const Scene& scene) {
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
   o.comparator_offset = circuit::comparator_offset(circuit::Level::ideal);
   o.lock_catch = true;
-  const MachinePatch p = patch_on_machine(make_patch(scene, o), circuit::Level::ideal);
+  const MachinePatch p = patch_on_machine(scale_program(scene, o), circuit::Level::ideal);
   return wiring_from_json(json_text(to_json(p)), scene.name + ".sheet.json");
 }
 
@@ -76,11 +76,11 @@ std::vector<std::pair<std::string, std::string>> scene_files() {
 
 /// The sheet of a scene at a level, as gearpatch patch makes it (without the peak run).
 Wiring sheet_at(const Scene& scene, circuit::Level level) {
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
   o.comparator_offset = circuit::comparator_offset(level);
   o.lock_catch = level == circuit::Level::ideal;
-  return patch_on_machine(make_patch(scene, o), level).wiring;
+  return patch_on_machine(scale_program(scene, o), level).wiring;
 }
 
 /// The jacks of a sheet that its machine's panel does not have: an amplifier

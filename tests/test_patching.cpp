@@ -23,15 +23,15 @@ using namespace gearpatch::patching;
 
 namespace {
 
-Patch patch_of(const std::string& scene, const std::string& machine, circuit::Level level = circuit::Level::hardware) {
-  PatchOptions o;
+ScaledProgram program_of(const std::string& scene, const std::string& machine, circuit::Level level = circuit::Level::hardware) {
+  ScalingOptions o;
   o.check_peaks = true;  // as gearpatch patch: the oscilloscope scales follow the peaks
   o.comparator_offset = circuit::comparator_offset(level);
-  return make_patch(load_scene(testing::source_path("scenes/" + scene + ".ini"), machine), o);
+  return scale_program(load_scene(testing::source_path("scenes/" + scene + ".ini"), machine), o);
 }
 
 MachinePatch on(const std::string& scene, const std::string& machine) {
-  return patch_on_machine(patch_of(scene, machine));
+  return patch_on_machine(program_of(scene, machine));
 }
 
 int needed(const Allocation& a, ElementKind kind) {
@@ -179,7 +179,7 @@ TEST_CASE("every connection of the patch is a connection of the deck and back, w
   for (const auto& scene : scenes)
     for (const auto& machine : machines) {
       INFO(scene << " on " << machine);
-      const Patch p = patch_of(scene, machine, circuit::Level::ideal);
+      const ScaledProgram p = program_of(scene, machine, circuit::Level::ideal);
       const circuit::Circuit c = circuit::build_circuit(p, circuit::Level::ideal);
       const Allocation a = allocate(c);
       const std::set<DeckWire> from_deck = deck_wires(circuit::render_netlist(c), c.machine.input_resistance);
@@ -283,7 +283,7 @@ TEST_CASE("gearpatch patch writes the sheet, JSON and picture together", "[patch
 }
 
 TEST_CASE("the hardware deck on THE ANALOG THING is built from its profile, and ngspice runs it", "[patching]") {
-  const Patch p = patch_of("bild5b", "the-analog-thing");
+  const ScaledProgram p = program_of("bild5b", "the-analog-thing");
   const circuit::Circuit c = circuit::build_circuit(p, circuit::Level::hardware);
   const std::string deck = circuit::render_netlist(c);
   CHECK_THAT(deck, Catch::Contains("Cint sj out 1.0101010101010101e-07"));  // SLOW: 101 nF at 1 MΩ, k0 = 9.9
@@ -302,7 +302,7 @@ TEST_CASE("the hardware deck on THE ANALOG THING is built from its profile, and 
     for (const auto& [param, value] : c.parameters)
       if (param == name) CHECK(dial == value);
   // the generic machine keeps the unbuffered divider and positive offsets (the golden decks)
-  const std::string generic = circuit::render_netlist(circuit::build_circuit(patch_of("bild5b", "generic"),
+  const std::string generic = circuit::render_netlist(circuit::build_circuit(program_of("bild5b", "generic"),
                                                                              circuit::Level::hardware));
   CHECK_THAT(generic, !Catch::Contains("Ebuf") && !Catch::Contains("nref"));
   auto ngspice = spice::make_batch_ngspice();

@@ -10,7 +10,7 @@
 #include <set>
 
 #include "common/error.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scaling/scaling_problem.h"
 #include "scene/random_scene.h"
 #include "spice/simulator.h"
@@ -195,7 +195,7 @@ TEST_CASE("every random scene the scaling refuses is truly infeasible (seed 3, 2
   for (const RandomScene& r : random_scenes(3, 210)) {
     const Scene scene = parse_scene(r.text, r.name + ".ini");
     try {
-      make_patch(scaling_input(scene));
+      scale_program(scaling_input(scene));
     } catch (const Error& e) {
       REQUIRE(e.kind() == Error::Kind::input);
       ++refused;
@@ -205,7 +205,7 @@ TEST_CASE("every random scene the scaling refuses is truly infeasible (seed 3, 2
   // The check itself, on a scene the scaling must refuse (1e12 N·m/rad against 0.2 rad of play).
   const Scene stiff = load_scene(testing::source_path("scenes/extremes/stiff.ini"));
   try {
-    make_patch(scaling_input(stiff));
+    scale_program(scaling_input(stiff));
     FAIL("stiff.ini was not refused");
   } catch (const Error& e) {
     confirm_refusal(stiff, e.what());

@@ -276,7 +276,7 @@ TEST_CASE("a missing result is named with its log, whose text stays out of the t
   CHECK(read_file(dir / "secret") == "the secret line\n");
 }
 
-TEST_CASE("a Monte Carlo run folder holds its --machine file: jobs run from another folder find it", "[tolerance]") {
+TEST_CASE("a Monte Carlo run folder holds its --machine file: jobs run from another folder find it", "[component_spread]") {
   testing::TempFolder dir("mc-machine");
   std::string output;
   fs::copy_file(testing::source_path("machines/the-analog-thing.ini"), dir.path / "mine.ini");

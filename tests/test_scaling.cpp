@@ -17,7 +17,7 @@
 #include "common/json_text.h"
 #include "common/error.h"
 #include "scaling/maxima.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/scene.h"
 #include "scene/scene_inputs.h"
 #include "support.h"
@@ -28,8 +28,8 @@ namespace {
 
 /// The tests of this file up to the solved scaling's own check the paper's
 /// recipe (Table 1 by hand), which --scaling paper keeps.
-PatchOptions paper_options() {
-  PatchOptions o;
+ScalingOptions paper_options() {
+  ScalingOptions o;
   o.method = ScalingMethod::paper;
   return o;
 }
@@ -74,8 +74,8 @@ std::vector<std::string> example_scenes() {
   return paths;
 }
 
-double setting_of(const Patch& patch, const std::string& name) {
-  const Potentiometer* p = patch.find(*parse_setting(name));
+double setting_of(const ScaledProgram& program, const std::string& name) {
+  const Potentiometer* p = program.find(*parse_setting(name));
   REQUIRE(p != nullptr);
   return p->setting;
 }
@@ -90,9 +90,9 @@ int run_binary(const std::string& arguments) {
 
 TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
   const Scene scene = parse_scene(hand_scene, "hand.ini");
-  PatchOptions options = paper_options();
+  ScalingOptions options = paper_options();
   options.check_peaks = false;
-  const Patch patch = make_patch(scene, options);
+  const ScaledProgram program = scale_program(scene, options);
 
   // Θp = 2, Θs = 0.5, c = 200, d = 4, ε = 0.05, k_Rp = 0.4, k_Rs = 0.1,
   // k_z = 1 − 0.75 = 0.25, M_am = rated 4, M_L = 0.5, φ̇p0 = 1, φ̇s0 = −0.5,
@@ -112,14 +112,14 @@ TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
   // Speeds: centre of mass v0 = |2·1 + 0.5·(−0.5)|/2.5 = 0.7; net drive gain
   // (|4 − 0.5| − 0.4 − 0.1)·1/2.5 = 1.2; φ̇p ≤ 1.9 + 0.2·Δφ̇m = 2.244,
   // φ̇s ≤ 1.9 + 0.8·Δφ̇m = 3.276; both rounded up to 5.
-  CHECK(patch.maxima.drive_torque == 4);
-  CHECK(patch.maxima.speed_primary == 5);
-  CHECK(patch.maxima.speed_secondary == 5);
-  CHECK(patch.maxima.relative_speed == Approx(dw).margin(1e-12));
-  CHECK(patch.maxima.contact_twist == Approx(twist_c).margin(1e-12));
-  CHECK(patch.maxima.twist == Approx(twist).margin(1e-12));
-  CHECK(patch.maxima.torque == Approx(torque).margin(1e-12));
-  CHECK(patch.beta == 2);
+  CHECK(program.maxima.drive_torque == 4);
+  CHECK(program.maxima.speed_primary == 5);
+  CHECK(program.maxima.speed_secondary == 5);
+  CHECK(program.maxima.relative_speed == Approx(dw).margin(1e-12));
+  CHECK(program.maxima.contact_twist == Approx(twist_c).margin(1e-12));
+  CHECK(program.maxima.twist == Approx(twist).margin(1e-12));
+  CHECK(program.maxima.torque == Approx(torque).margin(1e-12));
+  CHECK(program.beta == 2);
 
   // Table 1 with β = 2 (Θp·β·φ̇pm = 20, Θs·β·φ̇sm = 5):
   const std::map<std::string, double> table = {
@@ -151,83 +151,83 @@ TEST_CASE("Table 1 computed by hand for one scene", "[scaling]") {
       {"alpha13", {1, 1.0}},                  {"alpha14", {1, 0.3648675168014285}},
       {"alpha_tooth", {1, 0.9455591666811557}}, {"alpha_load", {1, 0.10009007204952663}},
   };
-  REQUIRE(patch.potentiometers.size() == table.size());
+  REQUIRE(program.potentiometers.size() == table.size());
   for (const auto& [name, value] : table) {
     INFO(name);
-    const Potentiometer* p = patch.find(*parse_setting(name));
+    const Potentiometer* p = program.find(*parse_setting(name));
     REQUIRE(p != nullptr);
     CHECK(p->coefficient == Approx(value).margin(1e-12));
     CHECK(p->weight == loaded.at(name).first);
     CHECK(p->setting == Approx(std::abs(value) / p->weight).margin(1e-12));
     CHECK(p->loaded_setting == Approx(loaded.at(name).second).margin(1e-12));
   }
-  REQUIRE(patch.dead_zone);
-  CHECK(*patch.dead_zone == Approx(0.34600336018639405).margin(1e-12));  // ε/Δφm
-  CHECK(patch.delta1 == 5e-3);  // the default offset for a real machine
-  CHECK(patch.delta2 == 0);
+  REQUIRE(program.dead_zone);
+  CHECK(*program.dead_zone == Approx(0.34600336018639405).margin(1e-12));  // ε/Δφm
+  CHECK(program.delta1 == 5e-3);  // the default offset for a real machine
+  CHECK(program.delta2 == 0);
   std::set<std::string> unused;
-  for (const auto& [name, reason] : patch.unused) unused.insert(to_string(name));
+  for (const auto& [name, reason] : program.unused) unused.insert(to_string(name));
   CHECK(unused == std::set<std::string>{"alpha_lock", "delta2"});
   // alpha1 and alpha5 at 0.02 are hard to set: said so.
   bool warned = false;
-  for (const auto& w : patch.warnings) warned = warned || w.find("alpha1 ") != std::string::npos;
+  for (const auto& w : program.warnings) warned = warned || w.find("alpha1 ") != std::string::npos;
   CHECK(warned);
 }
 
 TEST_CASE("Without drive and friction the maxima are the paper's (6.11), (6.12)", "[scaling]") {
-  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), paper_options());
+  const ScaledProgram program = scale_program(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), paper_options());
   // Δφ̇m = Δφ̇0 = 1; Δφ'm = Δφ̇m·sqrt(Θ/c) = sqrt(0.5/100); M0m = c·Δφ'm (d = 0).
-  CHECK(patch.maxima.relative_speed == 1);
-  CHECK(patch.maxima.contact_twist == Approx(std::sqrt(0.005)).margin(1e-15));
-  CHECK(patch.maxima.twist == Approx(0.1 + std::sqrt(0.005)).margin(1e-15));
-  CHECK(patch.maxima.torque == Approx(100 * std::sqrt(0.005)).margin(1e-13));
+  CHECK(program.maxima.relative_speed == 1);
+  CHECK(program.maxima.contact_twist == Approx(std::sqrt(0.005)).margin(1e-15));
+  CHECK(program.maxima.twist == Approx(0.1 + std::sqrt(0.005)).margin(1e-15));
+  CHECK(program.maxima.torque == Approx(100 * std::sqrt(0.005)).margin(1e-13));
   // Elastic, frictionless: every scaled signal reaches its scale exactly.
-  for (const auto& [signal, fraction] : patch.peaks) CHECK(fraction == Approx(1).margin(1e-5));
+  for (const auto& [signal, fraction] : program.peaks) CHECK(fraction == Approx(1).margin(1e-5));
   // β: alpha3 = M0m/(Θp·φ̇pm) = 7.07/β must stay <= 10, so β = 1.
-  CHECK(patch.beta == 1);
-  CHECK(patch.beta_reason.find("alpha3") != std::string::npos);
-  std::map<Setting, std::string> unused(patch.unused.begin(), patch.unused.end());
+  CHECK(program.beta == 1);
+  CHECK(program.beta_reason.find("alpha3") != std::string::npos);
+  std::map<Setting, std::string> unused(program.unused.begin(), program.unused.end());
   CHECK(unused.count(Setting::alpha1));
   CHECK(unused.count(Setting::alpha5));
   CHECK(unused.at(Setting::alpha7).find("initial value 0") != std::string::npos);
   CHECK(unused.count(Setting::alpha14));
-  CHECK(patch.find(Setting::alpha1) == nullptr);
+  CHECK(program.find(Setting::alpha1) == nullptr);
 }
 
 TEST_CASE("Every example scene: a-priori peaks within scale, autoscaled in [50 %, 100 %]", "[scaling]") {
   for (const auto& path : example_scenes()) {
     INFO(path);
     const Scene scene = load_scene(path);
-    const Patch patch = make_patch(scene, paper_options());
-    REQUIRE(!patch.peaks.empty());
-    for (const auto* peaks : {&patch.peaks, &patch.bounded_peaks})
+    const ScaledProgram program = scale_program(scene, paper_options());
+    REQUIRE(!program.peaks.empty());
+    for (const auto* peaks : {&program.peaks, &program.bounded_peaks})
       for (const auto& [signal, fraction] : *peaks) {
         INFO(signal << " at " << fraction);
         bool reported = false;
-        for (const auto& w : patch.warnings)
+        for (const auto& w : program.warnings)
           reported = reported || w.rfind(signal + " would overload", 0) == 0;
         CHECK((fraction <= 1 + 1e-9 || reported));
       }
-    PatchOptions autoscale = paper_options();
+    ScalingOptions autoscale = paper_options();
     autoscale.autoscale = true;
-    const Patch scaled = make_patch(scene, autoscale);
+    const ScaledProgram scaled = scale_program(scene, autoscale);
     for (const auto& [signal, fraction] : scaled.peaks) {
       INFO(signal << " at " << fraction);
       CHECK(fraction >= 0.5);
       CHECK(fraction <= 1.0);
     }
     for (const auto& [signal, fraction] : scaled.bounded_peaks) CHECK(fraction <= 1 + 1e-9);
-    CHECK(scaled.a_priori_peaks == patch.peaks);
+    CHECK(scaled.a_priori_peaks == program.peaks);
   }
 }
 
 TEST_CASE("An overload is reported with the signal and by how much", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.maxima["contact_twist"] = 0.05;  // the true peak is about 0.052 rad
-  const Patch patch = make_patch(scene, paper_options());
-  CHECK(patch.peaks.at("X'") > 1);
+  const ScaledProgram program = scale_program(scene, paper_options());
+  CHECK(program.peaks.at("X'") > 1);
   bool found = false;
-  for (const auto& w : patch.warnings)
+  for (const auto& w : program.warnings)
     found = found || (w.rfind("X' would overload", 0) == 0 && w.find("% over") != std::string::npos &&
                       w.find("maxima.contact_twist") != std::string::npos);
   CHECK(found);
@@ -236,11 +236,11 @@ TEST_CASE("An overload is reported with the signal and by how much", "[scaling]"
 TEST_CASE("Every setting is in [0, 1] and the loaded setting inverts the loading", "[scaling]") {
   for (const auto& path : example_scenes()) {
     for (bool autoscale : {false, true}) {
-      PatchOptions o = paper_options();
+      ScalingOptions o = paper_options();
       o.autoscale = autoscale;
       const Scene scene = load_scene(path);
-      const Patch patch = make_patch(scene, o);
-      for (const auto& p : patch.potentiometers) {
+      const ScaledProgram program = scale_program(scene, o);
+      for (const auto& p : program.potentiometers) {
         INFO(path << " " << to_string(p.name));
         CHECK(p.setting >= 0);
         CHECK(p.setting <= 1);
@@ -251,7 +251,7 @@ TEST_CASE("Every setting is in [0, 1] and the loaded setting inverts the loading
                               scene.machine.potentiometer_resistance;
         CHECK(delivered_fraction(p.loaded_setting, lambda) == Approx(p.setting).margin(1e-12));
       }
-      if (patch.dead_zone) CHECK(*patch.dead_zone < 1);
+      if (program.dead_zone) CHECK(*program.dead_zone < 1);
     }
   }
 }
@@ -295,12 +295,12 @@ restitution = 1
 [run]
 duration = 1
 )", "still.ini");
-  CHECK_THROWS_WITH(make_patch(still, paper_options()), Catch::Contains("maxima.relative_speed"));
+  CHECK_THROWS_WITH(scale_program(still, paper_options()), Catch::Contains("maxima.relative_speed"));
   // β so small that alpha3 = 7.07/β exceeds every weight.
-  PatchOptions o = paper_options();
+  ScalingOptions o = paper_options();
   o.beta = 0.01;
   try {
-    make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), o);
+    scale_program(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini"), o);
     FAIL("no error");
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -311,7 +311,7 @@ duration = 1
   // alpha11 = Δφm/Δφ'm beyond 10: a stiff coupling against a wide play.
   Scene stiff = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini");
   stiff.stiffness = 1e6;
-  CHECK_THROWS_WITH(make_patch(stiff, paper_options()), Catch::Contains("alpha11") && Catch::Contains("maxima.contact_twist"));
+  CHECK_THROWS_WITH(scale_program(stiff, paper_options()), Catch::Contains("alpha11") && Catch::Contains("maxima.contact_twist"));
 }
 
 TEST_CASE("a setting that is not finite is an internal error naming it", "[scaling]") {
@@ -319,7 +319,7 @@ TEST_CASE("a setting that is not finite is an internal error naming it", "[scali
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.machine.potentiometer_resistance = 1e-320;
   try {
-    make_patch(scene, paper_options());
+    scale_program(scene, paper_options());
     FAIL("a NaN setting passed");
   } catch (const Error& e) {
     CHECK(e.kind() == Error::Kind::internal);
@@ -330,10 +330,10 @@ TEST_CASE("a setting that is not finite is an internal error naming it", "[scali
 TEST_CASE("settings JSON replaces text that is not UTF-8 instead of failing", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.name = "gear\xE4";  // a file stem in Latin-1
-  PatchOptions o = paper_options();
+  ScalingOptions o = paper_options();
   o.check_peaks = false;
   std::string json;
-  REQUIRE_NOTHROW(json = json_text(to_json(make_patch(scene, o))));
+  REQUIRE_NOTHROW(json = json_text(to_json(scale_program(scene, o))));
   CHECK_THAT(json, Catch::Contains("\"gear\xEF\xBF\xBD\""));
 }
 
@@ -341,62 +341,62 @@ TEST_CASE("Automatic β: coefficients, and the machine's speed for a stiff coupl
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5b.ini");
   scene.stiffness = 1e6;
   scene.backlash = 0;  // no dead zone: alpha11 = 1, no damping switch
-  Patch patch = make_patch(scene, paper_options());
+  ScaledProgram program = scale_program(scene, paper_options());
   // Without backlash Δφm = Δφ'm = Δφ̇m·sqrt(Θ/c), so alpha10 = sqrt(c/Θ)/β
   // = 1414/β <= 10: β >= 141 → 200.
-  CHECK(patch.beta == 200);
-  CHECK(patch.beta_reason.find("alpha10") != std::string::npos);
-  CHECK(!patch.dead_zone);
-  CHECK(patch.delta1 == 0);
-  std::map<Setting, std::string> unused(patch.unused.begin(), patch.unused.end());
+  CHECK(program.beta == 200);
+  CHECK(program.beta_reason.find("alpha10") != std::string::npos);
+  CHECK(!program.dead_zone);
+  CHECK(program.delta1 == 0);
+  std::map<Setting, std::string> unused(program.unused.begin(), program.unused.end());
   CHECK(unused.count(Setting::a));
   CHECK(unused.count(Setting::delta1));
-  REQUIRE(patch.find(Setting::alpha14));
-  CHECK(patch.find(Setting::alpha14)->feeds.find("no switch") != std::string::npos);
+  REQUIRE(program.find(Setting::alpha14));
+  CHECK(program.find(Setting::alpha14)->feeds.find("no switch") != std::string::npos);
 
   // With a weight of 100 and some play the coefficients would allow β = 10
   // (alpha3 = 707/β <= 100), but the contact oscillation sqrt(c/Θ) = 1414 rad/s
   // must stay <= 100·k0 rad/s of machine time: β >= 14.1 → 20.
   scene.backlash = 0.01;
   scene.machine.weights = {1, 10, 100};
-  patch = make_patch(scene, paper_options());
-  CHECK(patch.beta == 20);
-  CHECK(patch.beta_reason.find("oscillation") != std::string::npos);
+  program = scale_program(scene, paper_options());
+  CHECK(program.beta == 20);
+  CHECK(program.beta_reason.find("oscillation") != std::string::npos);
 }
 
 TEST_CASE("Tooth friction moves η from alpha4 into alpha_tooth; self-locking adds alpha_lock", "[scaling]") {
-  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild6c.ini"), paper_options());
-  const Maxima& m = patch.maxima;
-  const double scale = 1.0 * patch.beta * m.speed_secondary;  // Θs·β·φ̇sm
-  CHECK(patch.find(Setting::alpha4)->coefficient == Approx(m.torque / scale).epsilon(1e-14));
-  CHECK(patch.find(Setting::alpha4)->formula == "η·M0m/(Θs·β·φ̇sm)");
-  CHECK(patch.find(Setting::alpha_tooth)->coefficient == Approx(0.6 * m.torque / scale).epsilon(1e-14));
+  const ScaledProgram program = scale_program(load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild6c.ini"), paper_options());
+  const Maxima& m = program.maxima;
+  const double scale = 1.0 * program.beta * m.speed_secondary;  // Θs·β·φ̇sm
+  CHECK(program.find(Setting::alpha4)->coefficient == Approx(m.torque / scale).epsilon(1e-14));
+  CHECK(program.find(Setting::alpha4)->formula == "η·M0m/(Θs·β·φ̇sm)");
+  CHECK(program.find(Setting::alpha_tooth)->coefficient == Approx(0.6 * m.torque / scale).epsilon(1e-14));
   // k_Re → ∞: the reaction is dialled at the strongest the machine allows (α = 1 at
   // weight 10), and β is raised until it stops a full-scale speed within 0.1 % of
   // the 3 s run: 1/(10·k0·β) <= 3e-3 s → β >= 33.3 → 50.
-  CHECK(patch.find(Setting::alpha_lock)->coefficient == 10);
-  CHECK(patch.find(Setting::alpha_lock)->setting == 1);
-  CHECK(patch.beta == 50);
-  CHECK(patch.beta_reason.find("self-locking reaction") != std::string::npos);
-  CHECK(patch.find(Setting::alpha_lock)->coefficient * scale >= 10 * m.torque);  // M_Rem far above M0m
-  CHECK(patch.delta2 == 5e-3);
+  CHECK(program.find(Setting::alpha_lock)->coefficient == 10);
+  CHECK(program.find(Setting::alpha_lock)->setting == 1);
+  CHECK(program.beta == 50);
+  CHECK(program.beta_reason.find("self-locking reaction") != std::string::npos);
+  CHECK(program.find(Setting::alpha_lock)->coefficient * scale >= 10 * m.torque);  // M_Rem far above M0m
+  CHECK(program.delta2 == 5e-3);
   bool explained = false;
-  for (const auto& n : patch.notes) explained = explained || n.rfind("alpha4: set without η", 0) == 0;
+  for (const auto& n : program.notes) explained = explained || n.rfind("alpha4: set without η", 0) == 0;
   CHECK(explained);
-  CHECK(setting_of(patch, "alpha_tooth") > 0);
+  CHECK(setting_of(program, "alpha_tooth") > 0);
 }
 
 TEST_CASE("The machine's integrator constant divides the integrator coefficients", "[scaling]") {
   Scene scene = load_scene(GEARPATCH_SOURCE_DIR "/scenes/bild5a.ini");
   scene.machine.integrator_constant = 10;
-  const Patch patch = make_patch(scene, paper_options());
+  const ScaledProgram program = scale_program(scene, paper_options());
   // alpha3 = 7.07/(β·k0) <= 10: β >= 0.0707 → 0.1, and alpha3 = 7.07/(0.1·10) = 7.07.
-  CHECK(patch.beta == Approx(0.1));
-  CHECK(patch.k0 == 10);
-  CHECK(patch.find(Setting::alpha3)->coefficient == Approx(100 * std::sqrt(0.005)).epsilon(1e-12));
-  CHECK(patch.find(Setting::alpha8)->coefficient == 1);  // a summer input: no k0, no β
+  CHECK(program.beta == Approx(0.1));
+  CHECK(program.k0 == 10);
+  CHECK(program.find(Setting::alpha3)->coefficient == Approx(100 * std::sqrt(0.005)).epsilon(1e-12));
+  CHECK(program.find(Setting::alpha8)->coefficient == 1);  // a summer input: no k0, no β
   bool noted = false;
-  for (const auto& n : patch.notes) noted = noted || n.find("divided by this machine's k0") != std::string::npos;
+  for (const auto& n : program.notes) noted = noted || n.find("divided by this machine's k0") != std::string::npos;
   CHECK(noted);
 }
 
@@ -410,12 +410,12 @@ TEST_CASE("round_up_125 rounds to 1, 2, 5 × 10^n", "[scaling]") {
 }
 
 TEST_CASE("settings JSON has the documented keys", "[scaling]") {
-  const Patch patch = make_patch(load_scene(GEARPATCH_SOURCE_DIR "/scenes/driven.ini"), paper_options());
-  const auto j = to_json(patch);
+  const ScaledProgram program = scale_program(load_scene(GEARPATCH_SOURCE_DIR "/scenes/driven.ini"), paper_options());
+  const auto j = to_json(program);
   for (const char* key : {"beta", "k0", "unit_volts", "maxima", "potentiometers", "dead_zone",
                           "unused", "peaks", "delta1", "delta2"})
     CHECK(j.contains(key));
-  CHECK(j["beta"] == patch.beta);
+  CHECK(j["beta"] == program.beta);
   for (const auto& p : j["potentiometers"]) {
     for (const char* key : {"name", "formula", "coefficient", "setting", "weight", "loaded_setting", "feeds"})
       CHECK(p.contains(key));
@@ -426,7 +426,7 @@ TEST_CASE("settings JSON has the documented keys", "[scaling]") {
   CHECK(j["maxima"]["drive_torque"] == 2.0);
   CHECK(j["unused"][0].contains("reason"));
   CHECK(j["peaks"].contains("Wp"));
-  CHECK(to_table(patch).find("alpha10") != std::string::npos);
+  CHECK(to_table(program).find("alpha10") != std::string::npos);
 }
 
 TEST_CASE("every numeric option must be finite and in range", "[scaling][cli]") {
@@ -478,15 +478,15 @@ TEST_CASE("gearpatch settings end to end", "[scaling]") {
 TEST_CASE("a scaling refusal names the scene file and the line of the key to change", "[scaling]") {
   // alpha11 beyond every weight: the line of the backlash to make smaller.
   const std::string wide = testing::source_path("scenes/extremes/backlash-wide.ini");
-  CHECK_THROWS_WITH(make_patch(load_scene(wide), paper_options()), Catch::StartsWith(wide + ":13: alpha11 = "));
+  CHECK_THROWS_WITH(scale_program(load_scene(wide), paper_options()), Catch::StartsWith(wide + ":13: alpha11 = "));
   // A twist maximum below the half backlash: the line of the override.
   const Scene bad = parse_scene(testing::gear_scene("restitution = 0.5\nbacklash = 1",
                                                     "[initial]\nspeed_primary = 1\n[maxima]\ntwist = 0.1"),
                                 "bad-maxima.ini");
-  CHECK_THROWS_WITH(make_patch(bad), Catch::StartsWith("bad-maxima.ini:10: twist maximum"));
+  CHECK_THROWS_WITH(scale_program(bad), Catch::StartsWith("bad-maxima.ini:10: twist maximum"));
   // Below the scene the error knows no file, only the key it is about.
   try {
-    make_patch(scaling_input(bad));
+    scale_program(scaling_input(bad));
     FAIL("no error");
   } catch (const Error& e) {
     CHECK(e.scene_key() == std::optional<std::string>("maxima.twist"));

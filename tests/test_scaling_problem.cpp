@@ -9,7 +9,7 @@
 #include "model/gear_model.h"
 #include "scaling/linear_program.h"
 #include "scaling/peaks.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scaling/scaling_problem.h"
 #include "scaling/table1.h"
 #include "scaling/time_scale.h"
@@ -92,11 +92,11 @@ TEST_CASE("on every example and extreme scene the solved patch meets every const
     INFO(file);
     const Scene scene = load_scene(file);
     const ScalingInput in = scaling_input(scene);
-    PatchOptions o;
+    ScalingOptions o;
     o.check_peaks = false;
-    Patch patch;
+    ScaledProgram program;
     try {
-      patch = make_patch(scene, o);
+      program = scale_program(scene, o);
     } catch (const Error& e) {  // only a true conflict: the next test checks one
       CHECK(e.kind() == Error::Kind::input);
       CHECK_THAT(e.what(), Catch::Contains("no scaling fits"));
@@ -104,9 +104,9 @@ TEST_CASE("on every example and extreme scene the solved patch meets every const
       continue;
     }
     ++solved;
-    const MachineProfile& m = patch.machine;
+    const MachineProfile& m = program.machine;
     const double lowest = *std::min_element(m.weights.begin(), m.weights.end());
-    for (const Potentiometer& p : patch.potentiometers) {
+    for (const Potentiometer& p : program.potentiometers) {
       INFO(to_string(p.name));
       if (is_initial_value(p.name)) {
         CHECK(std::abs(p.coefficient) <= 1 / 1.1 + 1e-9);
@@ -117,22 +117,22 @@ TEST_CASE("on every example and extreme scene the solved patch meets every const
       const bool below = p.setting < m.smallest_setting * (1 - 1e-6);
       if (below) {  // dialled below α_min only where nothing else reaches, and said so
         CHECK(p.weight == lowest);
-        CHECK(std::any_of(patch.warnings.begin(), patch.warnings.end(),
+        CHECK(std::any_of(program.warnings.begin(), program.warnings.end(),
                           [&](const std::string& w) { return w.find(to_string(p.name) + " =") == 0; }));
       }
     }
     // Every peak bound within 1/(1 + headroom) of the unit, none below the lowest useful level.
-    for (const auto& [key, bound] : patch.a_priori.entries()) {
+    for (const auto& [key, bound] : program.a_priori.entries()) {
       INFO(to_string(key));
-      CHECK(bound / patch.maxima.at(key) <= 1 / 1.1 * (1 + 1e-3));
-      CHECK(bound / patch.maxima.at(key) >= 0.01 * (1 - 1e-3));
+      CHECK(bound / program.maxima.at(key) <= 1 / 1.1 * (1 + 1e-3));
+      CHECK(bound / program.maxima.at(key) >= 0.01 * (1 - 1e-3));
     }
-    CHECK(patch.worst_level <= 1 / 1.1 + 1e-9);
+    CHECK(program.worst_level <= 1 / 1.1 + 1e-9);
     // β fast enough for the contact oscillation (scenes that give β themselves excepted).
     if (!scene.machine.time_scale)
-      CHECK(contact_frequency(in.gear) / patch.beta <= max_machine_frequency_per_k0 * patch.k0 * (1 + 1e-3));
-    CHECK(patch.fixed_by.count("beta") == 1);
-    for (const auto& [key, value] : patch.maxima.entries()) CHECK(patch.fixed_by.count(to_string(key)) == 1);
+      CHECK(contact_frequency(in.gear) / program.beta <= max_machine_frequency_per_k0 * program.k0 * (1 + 1e-3));
+    CHECK(program.fixed_by.count("beta") == 1);
+    for (const auto& [key, value] : program.maxima.entries()) CHECK(program.fixed_by.count(to_string(key)) == 1);
   }
   CHECK(solved >= 24);  // every scene of the folders but the stiff one
   CHECK(refused <= 1);
@@ -158,7 +158,7 @@ TEST_CASE("a refusal names the conflict, and relaxing it by the reported amount 
   CHECK_FALSE(solve_scaling(pr, less).has_value());
   // In the user's words, with the file and the line of the key to change.
   try {
-    make_patch(load_scene(file));
+    scale_program(load_scene(file));
     FAIL("no refusal");
   } catch (const Error& e) {
     CHECK_THAT(e.what(), Catch::StartsWith(file + ":13: no scaling fits") && Catch::Contains("alpha11") &&
@@ -177,22 +177,22 @@ TEST_CASE("a preloaded scene closing at t = 0: M0m bounds spring and damper toge
   const ScalingInput in = scaling_input(scene);
   const Maxima bounds = peak_bounds(in);
   CHECK(bounds.torque == Approx(in.gear.stiffness * bounds.contact_twist + in.gear.damping * bounds.relative_speed));
-  const Patch patch = make_patch(scene);  // peaks checked against the reference model
-  CHECK(patch.warnings.empty());
-  CHECK(patch.peaks.at("m") <= 1 / 1.1);
-  PatchOptions paper;
+  const ScaledProgram program = scale_program(scene);  // peaks checked against the reference model
+  CHECK(program.warnings.empty());
+  CHECK(program.peaks.at("m") <= 1 / 1.1);
+  ScalingOptions paper;
   paper.method = ScalingMethod::paper;  // the larger of the two overloads the torque summer
-  CHECK(make_patch(scene, paper).peaks.at("m") > 1);
+  CHECK(scale_program(scene, paper).peaks.at("m") > 1);
 }
 
 TEST_CASE("settings shows the constraint that fixed each scale; the deck says scaling=solved", "[scaling]") {
-  const Patch patch = make_patch(testing::example_scene("bild5b"));
-  CHECK(patch.scaling_name() == "solved");
-  CHECK_THAT(patch.fixed_by.at("beta"), Catch::Contains("alpha3 at its largest"));
-  CHECK_THAT(patch.fixed_by.at("torque"), Catch::Contains("the peak bound of torque"));
-  const std::string table = to_table(patch);
+  const ScaledProgram program = scale_program(testing::example_scene("bild5b"));
+  CHECK(program.scaling_name() == "solved");
+  CHECK_THAT(program.fixed_by.at("beta"), Catch::Contains("alpha3 at its largest"));
+  CHECK_THAT(program.fixed_by.at("torque"), Catch::Contains("the peak bound of torque"));
+  const std::string table = to_table(program);
   CHECK_THAT(table, Catch::Contains("fixed by") && Catch::Contains("worst signal level 0.909 MU"));
-  const std::string json = json_text(to_json(patch));
+  const std::string json = json_text(to_json(program));
   CHECK_THAT(json, Catch::Contains("\"fixed_by\"") && Catch::Contains("\"scaling\": \"solved\""));
   // The header words, old and new, back to method and autoscale.
   CHECK(parse_scaling_name("paper") == std::pair(ScalingMethod::paper, false));
@@ -209,11 +209,11 @@ TEST_CASE("settings shows the constraint that fixed each scale; the deck says sc
 TEST_CASE("--autoscale solves again with the simulated peaks, each at 1/(1 + headroom)", "[scaling]") {
   for (const auto& name : testing::example_scenes()) {
     INFO(name);
-    PatchOptions o;
+    ScalingOptions o;
     o.autoscale = true;
-    const Patch patch = make_patch(testing::example_scene(name), o);
-    CHECK(patch.scaling_name() == "solved-autoscale");
-    for (const auto& [signal, fraction] : patch.peaks) {
+    const ScaledProgram program = scale_program(testing::example_scene(name), o);
+    CHECK(program.scaling_name() == "solved-autoscale");
+    for (const auto& [signal, fraction] : program.peaks) {
       INFO(signal);
       CHECK(fraction <= 1 / 1.1 * (1 + 1e-3));
     }
@@ -223,16 +223,16 @@ TEST_CASE("--autoscale solves again with the simulated peaks, each at 1/(1 + hea
 TEST_CASE("the machine's chosen k0 is kept unless the run would not fit its OP time", "[scaling]") {
   // Only β·k0 enters the constraints: every k0 gives the same settings.
   ScalingInput in = scaling_input(testing::example_scene("bild6c"));
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
-  const Patch one = make_patch(in, o);
+  const ScaledProgram one = scale_program(in, o);
   CHECK(one.beta == Approx(33.333).epsilon(1e-3));
   in.machine.integrator_constants = {1, 10, 100};
-  CHECK(make_patch(in, o).k0 == 1);  // no OP-time limit: the chosen k0 stays
+  CHECK(scale_program(in, o).k0 == 1);  // no OP-time limit: the chosen k0 stays
   // bild6c runs 3 s, 100 s of machine time at k0 = 1 (β = 33.3): an OP time
   // of 5 s needs k0 ≥ 20, so 100 is the nearest faster choice that fits.
   in.machine.op_time = 5;
-  const Patch chosen = make_patch(in, o);
+  const ScaledProgram chosen = scale_program(in, o);
   CHECK(chosen.k0 == 100);
   CHECK(chosen.machine.integrator_constant == 100);
   CHECK(chosen.beta == Approx(one.beta / 100).epsilon(1e-6));
@@ -248,16 +248,16 @@ TEST_CASE("the machine's chosen k0 is kept unless the run would not fit its OP t
 TEST_CASE("the contact oscillation stays within the machine's amplifiers: a slow amplifier gets a larger β, named",
           "[scaling]") {
   ScalingInput in = scaling_input(testing::example_scene("bild5a"));
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
-  const Patch fast = make_patch(in, o);
+  const ScaledProgram fast = scale_program(in, o);
   CHECK_THAT(fast.fixed_by.at("beta"), !Catch::Contains("amplifiers"));  // the shipped machines are far faster
   // An amplifier of 10 Hz gain-bandwidth: 1 % of a radian of lag per
   // amplifier (noise gain 11) at 2π·10·0.01/11 = 0.0571 rad/s of machine time.
   in.machine.amplifier.bandwidth_hz = 10;
   const double limit = max_amplifier_frequency(in.machine);
   CHECK(limit == Approx(2 * M_PI * 10 * amplifier_phase_lag / 11));
-  const Patch slow = make_patch(in, o);
+  const ScaledProgram slow = scale_program(in, o);
   CHECK(slow.beta > fast.beta);
   CHECK(slow.beta == Approx(contact_frequency(in.gear) / limit).epsilon(1e-3));
   CHECK_THAT(slow.fixed_by.at("beta"), Catch::Contains("amplifiers' bandwidth"));
@@ -265,12 +265,12 @@ TEST_CASE("the contact oscillation stays within the machine's amplifiers: a slow
   in.machine.amplifier.bandwidth_hz = 3e6;
   in.machine.amplifier.slew_volts_per_second = 1;
   CHECK(max_amplifier_frequency(in.machine) == Approx(0.1));
-  CHECK(make_patch(in, o).beta == Approx(contact_frequency(in.gear) / 0.1).epsilon(1e-3));
+  CHECK(scale_program(in, o).beta == Approx(contact_frequency(in.gear) / 0.1).epsilon(1e-3));
   // A β given by the scene is kept, and the report says the amplifiers cannot follow.
   in.machine.amplifier.slew_volts_per_second = 1.3e7;
   in.machine.amplifier.bandwidth_hz = 10;
   in.machine.time_scale = fast.beta;
-  const Patch given = make_patch(in, o);
+  const ScaledProgram given = scale_program(in, o);
   CHECK(given.beta == fast.beta);
   bool warned = false;
   for (const auto& w : given.warnings) warned = warned || w.find("the machine's amplifiers follow") != std::string::npos;
@@ -295,18 +295,18 @@ TEST_CASE("--autoscale: the self-locking catch sinks the secondary at most 0.1 %
   REQUIRE(run.peaks);
   REQUIRE(run.peaks->lock_stops);
   CHECK(run.peaks->catch_speed == Approx(12.98).epsilon(1e-3));
-  PatchOptions o;
+  ScalingOptions o;
   o.autoscale = true;
   o.lock_catch = true;  // the ideal level's
-  const Patch patch = make_patch(in, o, run);
-  const double v = run.peaks->catch_speed, a = 10 * patch.k0 * patch.beta * patch.maxima.speed_secondary;
+  const ScaledProgram program = scale_program(in, o, run);
+  const double v = run.peaks->catch_speed, a = 10 * program.k0 * program.beta * program.maxima.speed_secondary;
   const double overshoot = in.gear.stiffness * v * v / (2 * a);
-  CHECK(overshoot <= lock_catch_error * patch.maxima.torque * (1 + 1e-3));
-  CHECK_THAT(patch.fixed_by.at("beta"), Catch::Contains("self-locking catch"));
+  CHECK(overshoot <= lock_catch_error * program.maxima.torque * (1 + 1e-3));
+  CHECK_THAT(program.fixed_by.at("beta"), Catch::Contains("self-locking catch"));
   // Not posed for the hardware level, nor without --autoscale (no simulated catch speed).
   o.lock_catch = false;
-  CHECK_THAT(make_patch(in, o, run).fixed_by.at("beta"), !Catch::Contains("catch"));
+  CHECK_THAT(scale_program(in, o, run).fixed_by.at("beta"), !Catch::Contains("catch"));
   o.lock_catch = true;
   o.autoscale = false;
-  CHECK_THAT(make_patch(in, o).fixed_by.at("beta"), !Catch::Contains("catch"));
+  CHECK_THAT(scale_program(in, o).fixed_by.at("beta"), !Catch::Contains("catch"));
 }

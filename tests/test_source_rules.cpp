@@ -33,7 +33,7 @@ TEST_CASE("code decides on typed values: a string prefix is tested only where te
   // Each place and why it may: it reads text from outside (a file, a line of
   // another program, the environment), where the prefix is the syntax.
   const std::map<std::string, int> parsing = {
-      {"bench/machine_info.cc", 1},    // /proc/cpuinfo's "model name" lines
+      {"tradeoff/host_info.cc", 1},    // /proc/cpuinfo's "model name" lines
       {"common/process.cc", 1},        // LC_ALL= / LC_NUMERIC= entries of the environment
       {"scene/drive_table.cc", 1},     // a byte order mark
       {"scene/scene.cc", 3},           // a byte order mark; the INI sections machine. and maxima.
@@ -42,7 +42,7 @@ TEST_CASE("code decides on typed values: a string prefix is tested only where te
   // Identities still written as text by the module that reads them back:
   // error_budget's component names.
   const std::map<std::string, int> untyped = {
-      {"tolerance/error_budget.cc", 2},
+      {"component_spread/error_budget.cc", 2},
   };
   std::map<std::string, int> allowed = parsing;
   allowed.insert(untyped.begin(), untyped.end());

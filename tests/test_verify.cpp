@@ -14,12 +14,12 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/gnuplot.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "solver/integrate.h"
 #include "spice/scripted_simulator.h"
 #include "support.h"
-#include "tolerance/component_draw.h"
-#include "tolerance/measured_diagnosis.h"
+#include "component_spread/component_draw.h"
+#include "component_spread/measured_diagnosis.h"
 #include "verify/report.h"
 #include "verify/verify.h"
 
@@ -41,30 +41,30 @@ verify::VerifyOptions paper() {
   return o;
 }
 
-Patch paper_patch(const Scene& scene) {
-  PatchOptions o;
+ScaledProgram paper_program(const Scene& scene) {
+  ScalingOptions o;
   o.method = ScalingMethod::paper;
-  return make_patch(scene, o);
+  return scale_program(scene, o);
 }
 
 std::string generated_deck(const Scene& scene, circuit::Level level) {
-  PatchOptions o;
+  ScalingOptions o;
   o.check_peaks = false;
   o.comparator_offset = circuit::comparator_offset(level);
-  return circuit::render_netlist(circuit::build_circuit(make_patch(scene, o), level));
+  return circuit::render_netlist(circuit::build_circuit(scale_program(scene, o), level));
 }
 
 /// Machine voltages a perfect circuit would give: the reference, scaled.
 spice::Vectors perfect_circuit(const Scene& scene, const verify::VerifyResult& seen) {
-  const Patch patch = paper_patch(scene);
+  const ScaledProgram program = paper_program(scene);
   const double u = scene.machine.unit_volts;
   spice::Vectors v;
   for (const Sample& s : seen.reference.samples) {
-    v.data["time"].push_back(s.t * patch.beta);
-    v.data["v(wp)"].push_back(s.omega_p / patch.maxima.speed_primary * u);
-    v.data["v(ws)"].push_back(s.omega_s / patch.maxima.speed_secondary * u);
-    v.data["v(x)"].push_back(s.dphi / patch.maxima.twist * u);
-    v.data["v(m)"].push_back(s.m0 / patch.maxima.torque * u);
+    v.data["time"].push_back(s.t * program.beta);
+    v.data["v(wp)"].push_back(s.omega_p / program.maxima.speed_primary * u);
+    v.data["v(ws)"].push_back(s.omega_s / program.maxima.speed_secondary * u);
+    v.data["v(x)"].push_back(s.dphi / program.maxima.twist * u);
+    v.data["v(m)"].push_back(s.m0 / program.maxima.torque * u);
   }
   return v;
 }
@@ -106,10 +106,10 @@ TEST_CASE("at the hardware level a scene passes within tolerance or fails with a
     const Scene s = testing::example_scene(scene);
     circuit::Circuit built;
     verify::VerifyOptions recorded = o;
-    tolerance::also_alter(recorded, [&](circuit::Circuit& c) { built = c; });
+    component_spread::also_alter(recorded, [&](circuit::Circuit& c) { built = c; });
     const verify::VerifyResult r = verify::verify(s, recorded, *ngspice);
     REQUIRE(!r.passed);
-    return tolerance::diagnose_by_measurement(s, o, r, built, 2);
+    return component_spread::diagnose_by_measurement(s, o, r, built, 2);
   };
   const auto b6 = named("bild6c");
   REQUIRE(b6.size() >= 2);
@@ -132,7 +132,7 @@ TEST_CASE("on classic every example scene passes at the hardware level at 2 %, w
       if (perfect)
         o.alter_circuit = [](circuit::Circuit& c) {
           for (const circuit::Amplifier& a : c.amplifiers)
-            c.machine.amplifier.offsets_by_name[tolerance::amplifier_subckt(a)] = 0;
+            c.machine.amplifier.offsets_by_name[component_spread::amplifier_subckt(a)] = 0;
         };
       const verify::VerifyResult r = verify::verify(load_scene(testing::scene_path(name), "classic"), o, *ngspice);
       INFO(verify::to_table(r));
@@ -231,7 +231,7 @@ TEST_CASE("an amplifier beyond one machine unit is an overload", "[verify]") {
   REQUIRE(r.overloads.size() == 1);
   CHECK(r.overloads[0].node == "m_n");
   CHECK(r.overloads[0].value == Approx(-1.25));
-  CHECK(r.overloads[0].t == Approx(v.data["time"][100] / paper_patch(scene).beta));
+  CHECK(r.overloads[0].t == Approx(v.data["time"][100] / paper_program(scene).beta));
   CHECK(!r.passed);
 }
 
@@ -298,7 +298,7 @@ namespace {
 spice::Vectors perfect_vectors(const Scene& scene) {
   spice::ScriptedSimulator probe;
   spice::Vectors flat;
-  flat.data["time"] = {0, paper_patch(scene).beta * scene.duration};
+  flat.data["time"] = {0, paper_program(scene).beta * scene.duration};
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) flat.data[n] = {0, 0};
   probe.then_return(flat);
   return perfect_circuit(scene, verify::verify(scene, paper(), probe));
@@ -419,7 +419,7 @@ TEST_CASE("a real scene's reference shifted by 0.5 % of the run passes verify; s
 
   // Late by 0.5 % of the run: each value is the reference's 0.5 % earlier
   // (the circuit rests at its initial state until then).
-  const double shift = 0.005 * scene.duration * paper_patch(scene).beta;
+  const double shift = 0.005 * scene.duration * paper_program(scene).beta;
   spice::Vectors late = perfect;
   const auto& time = perfect.data.at("time");
   for (const char* n : {"v(wp)", "v(ws)", "v(x)", "v(m)"}) {

@@ -20,10 +20,10 @@ namespace {
 using kainjow::mustache::data;
 using kainjow::mustache::mustache;
 
-// ------------------------------------------------------------ fixed figures
+// ------------------------------------------------------------ fixed constants
 
 /// Ideal level: op-amp gain, switch and comparator shape.
-struct IdealFigures {
+struct IdealConstants {
   static constexpr double gain = 1.0e6;            ///< E-element op-amps
   static constexpr double switch_ron = 1.0;        ///< Ohm, vs 100 kOhm inputs
   static constexpr double switch_roff = 1.0e12;    ///< Ohm, ROFF/RON = 1e12
@@ -32,8 +32,9 @@ struct IdealFigures {
   static constexpr double latch_set_mu = 0.2;      ///< set − reset beyond 1 MU that closes the latch
 };
 
-/// Hardware level: datasheet figures (templates/README.md lists them).
-struct HardwareFigures {
+/// DatasheetConstants: the hardware level's component values from datasheets
+/// (templates/README.md lists them).
+struct DatasheetConstants {
   // TL071-class op-amp (gain, bandwidth and slew come from the machine profile).
   static constexpr double opamp_headroom = 1.5;    ///< V below each supply
   static constexpr double opamp_ib = 65.0e-12;     ///< A
@@ -89,7 +90,7 @@ const std::vector<BlockInfo>& infos() {
 /// Positive-feedback resistor of the hardware Schmitt trigger: thresholds at
 /// offset +- vsat*R1/R2 = offset +- the profile's comparator hysteresis.
 double comparator_r2(const MachineProfile& m) {
-  using F = HardwareFigures;
+  using F = DatasheetConstants;
   return F::comparator_r1 * (m.supply_volts - F::opamp_headroom) / (m.comparator_hysteresis * m.unit_volts);
 }
 
@@ -102,11 +103,11 @@ void check_machine(Level level, const MachineProfile& m) {
   positive(m.input_resistance, "input_resistance");
   positive(m.potentiometer_resistance, "potentiometer_resistance");
   positive(m.supply_volts, "supply_volts");
-  if (level == Level::hardware && m.supply_volts - HardwareFigures::opamp_headroom <= m.unit_volts) {
+  if (level == Level::hardware && m.supply_volts - DatasheetConstants::opamp_headroom <= m.unit_volts) {
     throw Error(fmt::format(
         "machine profile: supply_volts = {} V: the hardware op-amps swing to supply - {} V, which must exceed "
         "the machine unit of {} V",
-        m.supply_volts, HardwareFigures::opamp_headroom, m.unit_volts));
+        m.supply_volts, DatasheetConstants::opamp_headroom, m.unit_volts));
   }
 }
 
@@ -133,9 +134,9 @@ void offset_of(const std::string& name, const MachineProfile& m, data& ctx) {
 }
 
 /// The hardware op-amp model (templates/README.md): the machine profile's
-/// amplifier (generic: the TL071 figures above) and its two variants.
+/// amplifier (generic: the TL071 values above) and its two variants.
 void opamp_context(const MachineProfile& m, data& ctx) {
-  using F = HardwareFigures;
+  using F = DatasheetConstants;
   const AmplifierModel& oa = m.amplifier;
   const double gm = 2 * kPi * oa.bandwidth_hz * F::opamp_cp;
   const double imax = oa.slew_volts_per_second * F::opamp_cp;
@@ -164,7 +165,7 @@ void opamp_context(const MachineProfile& m, data& ctx) {
 
 /// The hardware diode, analog switch and lock latch.
 void diode_and_switch_context(const MachineProfile& m, double vsat, data& ctx) {
-  using F = HardwareFigures;
+  using F = DatasheetConstants;
   ctx.set("d_is", num(F::diode_is));
   ctx.set("d_rs", num(F::diode_rs));
   ctx.set("d_n", num(F::diode_n));
@@ -187,7 +188,7 @@ void diode_and_switch_context(const MachineProfile& m, double vsat, data& ctx) {
 
 /// The hardware limiter's clamp and the comparator's Schmitt trigger.
 void limiter_and_comparator_context(const MachineProfile& m, double vsat, data& ctx) {
-  using F = HardwareFigures;
+  using F = DatasheetConstants;
   const double u = m.unit_volts;
   const double imax = m.amplifier.slew_volts_per_second * F::opamp_cp;
   // Limiter: the clamp current while the op-amp sits at its (slightly
@@ -224,7 +225,7 @@ data context(Level level, const MachineProfile& m) {
   ctx.set("rpot", num(m.potentiometer_resistance));
   ctx.set("supply", num(m.supply_volts));
   if (level == Level::ideal) {
-    using F = IdealFigures;
+    using F = IdealConstants;
     ctx.set("ideal_gain", num(F::gain));
     ctx.set("sw_ron", num(F::switch_ron));
     ctx.set("sw_roff", num(F::switch_roff));
@@ -236,7 +237,7 @@ data context(Level level, const MachineProfile& m) {
     ctx.set("cmp_width_mu", num(F::comparator_width_mu));
     return ctx;
   }
-  const double vsat = m.supply_volts - HardwareFigures::opamp_headroom;
+  const double vsat = m.supply_volts - DatasheetConstants::opamp_headroom;
   ctx.set("vsat", num(vsat));
   opamp_context(m, ctx);
   diode_and_switch_context(m, vsat, ctx);
@@ -379,13 +380,13 @@ std::string render_amplifier(Level level, std::string_view kind, const std::stri
 
 
 double ideal_latch_set_depth_mu() {
-  return std::atanh(IdealFigures::latch_set_mu) * IdealFigures::comparator_width_mu;
+  return std::atanh(IdealConstants::latch_set_mu) * IdealConstants::comparator_width_mu;
 }
 
 double halfwave_gain(Level level, const MachineProfile& m) {
   if (level == Level::ideal) return 1;
   // A diode drop (0.5 V at the rectifier's 0.1 mA and its load) plus margin.
-  const double swing = m.supply_volts - HardwareFigures::opamp_headroom;
+  const double swing = m.supply_volts - DatasheetConstants::opamp_headroom;
   return swing - m.unit_volts >= 1.0 ? 1 : 0.5;
 }
 

@@ -10,7 +10,7 @@
 #include "circuit/stribeck_generator.h"
 #include "common/error.h"
 #include "scaling/table1.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 
 namespace gearpatch::circuit {
 
@@ -33,14 +33,14 @@ class Section {
 /// Builds the circuit block by block; each add_* method is one part of Bild 4.
 class Builder {
  public:
-  Builder(const Patch& patch, Level level) : patch_(patch), level_(level) {
-    c_.scene = patch.scene;
+  Builder(const ScaledProgram& program, Level level) : program_(program), level_(level) {
+    c_.scene = program.scene;
     c_.level = level;
-    c_.machine = patch.machine;
-    c_.beta = patch.beta;
-    c_.autoscaled = patch.autoscaled;
-    c_.scaling = patch.scaling_name();
-    c_.duration = patch.duration;
+    c_.machine = program.machine;
+    c_.beta = program.beta;
+    c_.autoscaled = program.autoscaled;
+    c_.scaling = program.scaling_name();
+    c_.duration = program.duration;
   }
 
   Circuit build() {
@@ -57,11 +57,11 @@ class Builder {
   }
 
  private:
-  bool has(Setting name) const { return patch_.find(name) != nullptr; }
+  bool has(Setting name) const { return program_.find(name) != nullptr; }
 
   AmplifierInput through(const std::string& from, Setting pot, std::string ctrl = "",
                          std::string release = "") {
-    const Potentiometer* p = patch_.find(pot);
+    const Potentiometer* p = program_.find(pot);
     if (!p) throw Error("internal: the circuit needs " + to_string(pot) + " but the settings have none");
     AmplifierInput in{p->stages == 0 ? from : staged(from, *p), pot, static_cast<int>(p->weight), std::move(ctrl),
                       std::move(release)};
@@ -125,35 +125,35 @@ class Builder {
     c_.nodes[node] = {std::move(signal), std::move(unit), full_scale, std::move(description), feature_};
   }
   void omit(const std::string& what) { c_.omitted.push_back(what); }
-  /// The initial-value setting of an integrator, if the patch has it (else it starts from 0).
+  /// The initial-value setting of an integrator, if the program has it (else it starts from 0).
   std::optional<Setting> initial(Setting name) const {
     return has(name) ? std::optional<Setting>(name) : std::nullopt;
   }
 
   void add_parameters() {
-    for (const Potentiometer& p : patch_.potentiometers) {
+    for (const Potentiometer& p : program_.potentiometers) {
       if (is_initial_value(p.name)) continue;  // written below with their sign
       c_.parameters.emplace_back(p.name, p.setting);
       // a buffered wiper (a follower) carries no load: the dial is the setting
-      c_.dial_settings[p.name] = patch_.machine.potentiometers_buffered ? p.setting : p.loaded_setting;
+      c_.dial_settings[p.name] = program_.machine.potentiometers_buffered ? p.setting : p.loaded_setting;
       c_.weights[p.name] = static_cast<int>(p.weight);
     }
-    if (std::any_of(patch_.potentiometers.begin(), patch_.potentiometers.end(),
+    if (std::any_of(program_.potentiometers.begin(), program_.potentiometers.end(),
                     [](const Potentiometer& p) { return p.stages < 0; })) {
       // The attenuating stages' potentiometer: α_min into the smallest weight.
-      const MachineProfile& m = patch_.machine;
+      const MachineProfile& m = program_.machine;
       const int smallest = *std::min_element(m.weights.begin(), m.weights.end());
       c_.parameters.emplace_back(Setting::alpha_stage, m.smallest_setting);
       c_.dial_settings[Setting::alpha_stage] =
           loaded_setting(m.smallest_setting, m.input_resistance / smallest / m.potentiometer_resistance);
       c_.weights[Setting::alpha_stage] = smallest;
     }
-    if (patch_.dead_zone) c_.parameters.emplace_back(Setting::a, *patch_.dead_zone);
-    if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, contact_threshold(patch_.delta1));
-    if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, contact_threshold(patch_.delta2));
+    if (program_.dead_zone) c_.parameters.emplace_back(Setting::a, *program_.dead_zone);
+    if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, contact_threshold(program_.delta1));
+    if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, contact_threshold(program_.delta2));
     // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
-    const Maxima& m = patch_.maxima;
-    const GearState& s0 = patch_.initial;
+    const Maxima& m = program_.maxima;
+    const GearState& s0 = program_.initial;
     if (has(Setting::alpha6)) c_.parameters.emplace_back(Setting::alpha6, s0.omega_p / m.speed_primary);
     if (has(Setting::alpha7)) c_.parameters.emplace_back(Setting::alpha7, s0.omega_s / m.speed_secondary);
     if (has(Setting::alpha12)) c_.parameters.emplace_back(Setting::alpha12, s0.dphi / m.twist);
@@ -163,20 +163,20 @@ class Builder {
     std::vector<AmplifierInput> in;
     if (has(Setting::alpha2)) {
       const Section drive(feature_, "drive torque");
-      mean("drive_n", "−Ma/Mam", "drive torque, inverted", "N·m", patch_.maxima.drive_torque);
-      if (patch_.drive_profile.empty())
-        c_.sources.emplace_back("drive_n", -patch_.drive_torque / patch_.maxima.drive_torque);
+      mean("drive_n", "−Ma/Mam", "drive torque, inverted", "N·m", program_.maxima.drive_torque);
+      if (program_.drive_profile.empty())
+        c_.sources.emplace_back("drive_n", -program_.drive_torque / program_.maxima.drive_torque);
       else
         c_.pwl_sources.emplace_back("drive_n", drive_waveform());
       in.push_back(through("drive_n", Setting::alpha2));
     }
     optional_input(in, "speed feedback on the primary", "wp", Setting::alpha_speed_p);
     if (has(Setting::alpha_stribeck_p))
-      stribeck_generator("p", "wp", patch_.maxima.speed_primary, Setting::alpha_stribeck_p, in);
+      stribeck_generator("p", "wp", program_.maxima.speed_primary, Setting::alpha_stribeck_p, in);
     optional_input(in, "primary bearing friction", "sign_p", Setting::alpha1);
     in.push_back(through("m", Setting::alpha3));
     amplifier("int_p", true, "wp", in, "(6.1) primary speed: wp = +phi_p'/phi_pm");
-    mean("wp", "+φ̇p/φ̇pm", "primary speed", "rad/s", patch_.maxima.speed_primary);
+    mean("wp", "+φ̇p/φ̇pm", "primary speed", "rad/s", program_.maxima.speed_primary);
     c_.initial_conditions.emplace_back("wp", initial(Setting::alpha6));
   }
 
@@ -185,13 +185,13 @@ class Builder {
     optional_input(in, "secondary bearing friction", "sign_s", Setting::alpha5);
     optional_input(in, "viscous friction on the secondary", "ws", Setting::alpha_viscous_s);
     if (has(Setting::alpha_stribeck_s))
-      stribeck_generator("s", "ws", patch_.maxima.speed_secondary, Setting::alpha_stribeck_s, in);
+      stribeck_generator("s", "ws", program_.maxima.speed_secondary, Setting::alpha_stribeck_s, in);
     if (has(Setting::alpha_tooth)) {  // (5.5): +|m| while ws > 0, −|m| while ws < 0
       const Section tooth(feature_, "tooth friction");
       in.push_back(through("m_abs", Setting::alpha_tooth, "ws_pos"));
       in.push_back(through("m_abs_n", Setting::alpha_tooth, "ws_neg"));
     }
-    optional_input(in, "load torque", patch_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load);
+    optional_input(in, "load torque", program_.load_torque > 0 ? "ref_p" : "ref_n", Setting::alpha_load);
     if (has(Setting::alpha_lock)) {  // (6.7): react to ws < 0 when engaged forward, ws > 0 backward
       const Section locking(feature_, "self-locking");
       // Without backlash, latched until the secondary has stopped: the
@@ -227,10 +227,10 @@ class Builder {
       mean("ref_n", "−1 MU", "the negative reference");
     }
     amplifier("int_s", true, "ws", in, "(6.2) secondary speed: ws = +phi_s'/phi_sm");
-    mean("ws", "+φ̇s/φ̇sm", "secondary speed", "rad/s", patch_.maxima.speed_secondary);
+    mean("ws", "+φ̇s/φ̇sm", "secondary speed", "rad/s", program_.maxima.speed_secondary);
     c_.initial_conditions.emplace_back("ws", initial(Setting::alpha7));
     inverter("inv_ws", "ws", "ws_n", "ws_n = -ws");
-    mean("ws_n", "−φ̇s/φ̇sm", "secondary speed, inverted", "rad/s", patch_.maxima.speed_secondary);
+    mean("ws_n", "−φ̇s/φ̇sm", "secondary speed, inverted", "rad/s", program_.maxima.speed_secondary);
   }
 
   /// The Stribeck dip as a diode function generator: n limiters on the speed
@@ -243,10 +243,10 @@ class Builder {
     const std::vector<double> breaks = stribeck_breakpoints(stribeck_steps);
     for (std::size_t i = 0; i < breaks.size(); ++i) {
       const std::string out = fmt::format("strib_{}{}", shaft, i + 1);
-      const double band = breaks[i] * patch_.stribeck_speed / full_scale;
+      const double band = breaks[i] * program_.stribeck_speed / full_scale;
       block(out, BlockKind::limiter, {speed, out}, format_band(band),
             fmt::format("Stribeck generator, breakpoint {:.4g} rad/s: {} = -clip({}/band)",
-                        breaks[i] * patch_.stribeck_speed, out, speed));
+                        breaks[i] * program_.stribeck_speed, out, speed));
       in.push_back(through(out, pot));
     }
   }
@@ -256,11 +256,11 @@ class Builder {
   /// the run, since a PWL source needs increasing times.
   std::vector<std::pair<double, double>> drive_waveform() const {
     std::vector<std::pair<double, double>> w;
-    const double rise = 1e-9 * patch_.beta * patch_.duration;
-    for (const auto& [t, torque] : patch_.drive_profile.points()) {
-      double time = patch_.beta * t;
+    const double rise = 1e-9 * program_.beta * program_.duration;
+    for (const auto& [t, torque] : program_.drive_profile.points()) {
+      double time = program_.beta * t;
       if (!w.empty() && time <= w.back().first) time = w.back().first + rise;
-      w.emplace_back(time, 0.0 - torque / patch_.maxima.drive_torque);  // no "-0" in the deck
+      w.emplace_back(time, 0.0 - torque / program_.maxima.drive_torque);  // no "-0" in the deck
     }
     return w;
   }
@@ -268,22 +268,22 @@ class Builder {
   void add_relative_speed_and_twist() {  // (6.3), (6.4), (6.9)
     amplifier("sum_dw", false, "dw_n", {through("wp", Setting::alpha8), through("ws_n", Setting::alpha9)},
               "(6.3) relative speed: dw_n = -dphi'/dphi'_m");
-    mean("dw_n", "−Δφ̇/Δφ̇m", "relative speed, inverted", "rad/s", patch_.maxima.relative_speed);
+    mean("dw_n", "−Δφ̇/Δφ̇m", "relative speed, inverted", "rad/s", program_.maxima.relative_speed);
     amplifier("int_x", true, "x", {through("dw_n", Setting::alpha10)}, "(6.4) twist: x = +dphi/dphi_m");
-    mean("x", "+Δφ/Δφm", "twist", "rad", patch_.maxima.twist);
+    mean("x", "+Δφ/Δφm", "twist", "rad", program_.maxima.twist);
     c_.initial_conditions.emplace_back("x", initial(Setting::alpha12));
-    if (patch_.dead_zone) {
+    if (program_.dead_zone) {
       const Section backlash(feature_, "backlash");
       block("dz", BlockKind::dead_zone, {"x", "dz_n"}, "{a}", "block 5, (6.9): dz_n = -deadzone(x, a)");
-      mean("dz_n", "−deadzone(Δφ)/Δφm", "twist beyond the backlash, inverted", "rad", patch_.maxima.twist);
+      mean("dz_n", "−deadzone(Δφ)/Δφm", "twist beyond the backlash, inverted", "rad", program_.maxima.twist);
     } else {
       inverter("inv_x", "x", "dz_n", "no backlash: (6.9) is the identity, dz_n = -x");
-      mean("dz_n", "−deadzone(Δφ)/Δφm", "twist, inverted (no backlash)", "rad", patch_.maxima.twist);
+      mean("dz_n", "−deadzone(Δφ)/Δφm", "twist, inverted (no backlash)", "rad", program_.maxima.twist);
       omit("block 5 dead zone: no backlash");
     }
     amplifier("amp_xp", false, "xp", {through("dz_n", Setting::alpha11)},
               "(6.9) contact twist: xp = +dphi'/dphi'_m");
-    mean("xp", "+Δφ'/Δφ'm", "contact twist", "rad", patch_.maxima.contact_twist);
+    mean("xp", "+Δφ'/Δφ'm", "contact twist", "rad", program_.maxima.contact_twist);
   }
 
   void add_transmitted_torque() {  // (6.8), (6.10)
@@ -291,8 +291,8 @@ class Builder {
     if (has(Setting::alpha14)) {
       const Section damping(feature_, "damping");
       inverter("inv_dw", "dw_n", "dw", "dw = +dphi'/dphi'_m");
-      mean("dw", "+Δφ̇/Δφ̇m", "relative speed", "rad/s", patch_.maxima.relative_speed);
-      if (patch_.dead_zone) {  // (6.10) corrected: damping only while the flanks touch
+      mean("dw", "+Δφ̇/Δφ̇m", "relative speed", "rad/s", program_.maxima.relative_speed);
+      if (program_.dead_zone) {  // (6.10) corrected: damping only while the flanks touch
         contact_comparators("damp", "{delta1}", "δ1", "blocks 7/9, (6.10)");
         in.push_back(through("dw", Setting::alpha14, "damp_p"));
         in.push_back(through("dw", Setting::alpha14, "damp_n"));
@@ -303,14 +303,14 @@ class Builder {
     } else {
       omit("damping path alpha14 and blocks 7/9: d = 0 (k = 1)");
     }
-    const bool capped = patch_.capped_contact && patch_.dead_zone && has(Setting::alpha14);
+    const bool capped = program_.capped_contact && program_.dead_zone && has(Setting::alpha14);
     amplifier("sum_m0", false, capped ? "kv_n" : "m_n", in,
               capped ? "(6.8) spring and damper: kv_n = -(s + q), s = c*dphi', q = d*dphi'' in contact"
                      : "(6.8) transmitted torque: m_n = -M0/M0m");
     if (capped) add_capped_law();
-    mean("m_n", "−M0/M0m", "transmitted torque, inverted", "N·m", patch_.maxima.torque);
+    mean("m_n", "−M0/M0m", "transmitted torque, inverted", "N·m", program_.maxima.torque);
     inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
-    mean("m", "+M0/M0m", "transmitted torque", "N·m", patch_.maxima.torque);
+    mean("m", "+M0/M0m", "transmitted torque", "N·m", program_.maxima.torque);
   }
 
   /// The capped law (Modelica's ElastoBacklash) from half-wave diodes:
@@ -385,8 +385,8 @@ class Builder {
   /// comparator has no hysteresis and no offset: on X its smooth width costs
   /// resolution (bild5b 0.12 % → 0.21 %, bild5c 0.017 % → 0.037 % in dphi).
   bool on_x() const {
-    const Potentiometer* gain = patch_.find(Setting::alpha11);
-    return level_ == Level::hardware && patch_.dead_zone && gain && gain->stages == 0;
+    const Potentiometer* gain = program_.find(Setting::alpha11);
+    return level_ == Level::hardware && program_.dead_zone && gain && gain->stages == 0;
   }
 
   /// The comparators' threshold δ. On X: a plus the Schmitt trigger's
@@ -402,10 +402,10 @@ class Builder {
   /// 0.63 %, 0.62 %; classic (h = 1e-4 MU), random-52817-021 and -030,
   /// δ = a + h/2, a + h, a + 2h, a + 3h (this): an impact lost / 4.9 %,
   /// 2.5 % of the run late / 4.9 %, 2.2 % late / 3.1 %, pass / pass (1.9 %
-  /// late / 1.2 %). On X': the patch's δ.
-  double contact_threshold(double patch_delta) const {
+  /// late / 1.2 %). On X': the program's δ.
+  double contact_threshold(double program_delta) const {
     const double h = c_.machine.comparator_hysteresis, corner = 2e-3 / c_.machine.unit_volts;
-    return on_x() ? *patch_.dead_zone + h + corner : patch_delta;
+    return on_x() ? *program_.dead_zone + h + corner : program_delta;
   }
 
   void add_friction() {  // (6.5), (6.6): blocks 2 and 14
@@ -413,7 +413,7 @@ class Builder {
     if (has(Setting::alpha1)) {
       const Section friction(feature_, "primary bearing friction");
       inverter("inv_wp", "wp", "wp_n", "wp_n = -wp");
-      mean("wp_n", "−φ̇p/φ̇pm", "primary speed, inverted", "rad/s", patch_.maxima.speed_primary);
+      mean("wp_n", "−φ̇p/φ̇pm", "primary speed, inverted", "rad/s", program_.maxima.speed_primary);
       block("sign_p", BlockKind::limiter, {"wp_n", "sign_p"}, band, "block 2, (6.5): sign_p = +sign(wp)");
       mean("sign_p", "+sign φ̇p", "the sign of the primary speed");
     } else {
@@ -435,9 +435,9 @@ class Builder {
     }
     const Section tooth(feature_, "tooth friction");
     block("abs_m", BlockKind::abs, {"m", "m_abs_n"}, "", "block 8: m_abs_n = -|m|");
-    mean("m_abs_n", "−|M0|/M0m", "the transmitted torque's magnitude, inverted", "N·m", patch_.maxima.torque);
+    mean("m_abs_n", "−|M0|/M0m", "the transmitted torque's magnitude, inverted", "N·m", program_.maxima.torque);
     inverter("inv_abs_m", "m_abs_n", "m_abs", "m_abs = |m|");
-    mean("m_abs", "+|M0|/M0m", "the transmitted torque's magnitude", "N·m", patch_.maxima.torque);
+    mean("m_abs", "+|M0|/M0m", "the transmitted torque's magnitude", "N·m", program_.maxima.torque);
     block("cmp_tooth_p", BlockKind::comparator, {"ws", "ws_pos"}, "0", "(5.5) sign of ws: positive");
     mean("ws_pos", "φ̇s > 0", "the secondary turns forward");
     block("cmp_tooth_n", BlockKind::comparator, {"ws_n", "ws_neg"}, "0", "(5.5) sign of ws: negative");
@@ -450,8 +450,8 @@ class Builder {
       return;
     }
     const Section locking(feature_, "self-locking");
-    const double lock_rate = patch_.k0 * patch_.find(Setting::alpha_lock)->coefficient;
-    const double band = lock_band(level_, patch_.machine.amplifier.bandwidth_hz, lock_rate);
+    const double lock_rate = program_.k0 * program_.find(Setting::alpha_lock)->coefficient;
+    const double band = lock_band(level_, program_.machine.amplifier.bandwidth_hz, lock_rate);
     block("lock_char", BlockKind::limiter, {"ws", "lock_steep_n"}, format_band(band),
           "block 16: steep characteristic, lock_steep_n = -clip(ws/band)");
     mean("lock_steep_n", "−clip(φ̇s/band)", "the secondary speed through the steep characteristic");
@@ -489,7 +489,7 @@ class Builder {
   void caught_comparators() {
     const std::string in = on_x() ? "x" : "xp", in_n = in + "_n";
     const double depth = ideal_latch_set_depth_mu();
-    const std::string offset = fmt::format("{:.6g}", contact_threshold(patch_.delta2) - depth);
+    const std::string offset = fmt::format("{:.6g}", contact_threshold(program_.delta2) - depth);
     const std::string why = fmt::format(" (delta2 - {:.4g}), the engagement switch conducting", depth);
     block("cmp_caught_p", BlockKind::comparator, {in, "caught_p"}, offset,
           "lock latch set: " + in + " > " + offset + why);
@@ -512,13 +512,13 @@ class Builder {
   /// 0.1 MU from the latch's closing level while the secondary runs, and
   /// latched catches that must not be (measured on seed 2752: three
   /// self-locking scenes with backlash failed by 10.6 … 36.9 %).
-  bool caught_sets_latch() const { return level_ == Level::ideal && !patch_.dead_zone; }
+  bool caught_sets_latch() const { return level_ == Level::ideal && !program_.dead_zone; }
 
   /// Whether the lock's reaction is latched until the secondary has stopped (add_secondary).
-  bool locks_latched() const { return !patch_.dead_zone || level_ == Level::ideal; }
+  bool locks_latched() const { return !program_.dead_zone || level_ == Level::ideal; }
 
   void add_probes() {
-    const Maxima& m = patch_.maxima;
+    const Maxima& m = program_.maxima;
     c_.probes[Signal::omega_p] = {"wp", m.speed_primary};
     c_.probes[Signal::omega_s] = {"ws", m.speed_secondary};
     c_.probes[Signal::dphi] = {"x", m.twist};
@@ -526,12 +526,12 @@ class Builder {
     const std::pair<Signal, const char*> scaled[] = {
         {Signal::omega_p, "Wp"}, {Signal::omega_s, "Ws"}, {Signal::dphi, "X"}, {Signal::m0, "m"}};
     for (const auto& [signal, name] : scaled)
-      if (const auto at = patch_.peaks.find(name); at != patch_.peaks.end()) c_.probes[signal].peak_mu = at->second;
+      if (const auto at = program_.peaks.find(name); at != program_.peaks.end()) c_.probes[signal].peak_mu = at->second;
   }
 
   static std::string format_band(double band) { return fmt::format("{}", band); }
 
-  const Patch& patch_;
+  const ScaledProgram& program_;
   Level level_;
   std::set<std::string> inverted_;  ///< the signals whose inverse the contact comparators have
   std::set<std::string> staged_;
@@ -568,8 +568,8 @@ std::string Circuit::feature_of(const std::string& node) const {
 
 double comparator_offset(Level level) { return level == Level::ideal ? 1e-5 : hardware_comparator_offset; }
 
-PatchOptions patch_options_for(Level level) {
-  PatchOptions o;
+ScalingOptions patch_options_for(Level level) {
+  ScalingOptions o;
   o.comparator_offset = comparator_offset(level);
   o.lock_catch = level == Level::ideal;
   return o;
@@ -586,8 +586,8 @@ double lock_band(Level level, double gbw_hz, double loop_rate) {
 }
 double lock_release(Level level) { return level == Level::ideal ? 1e-4 : 5e-3; }
 
-Circuit build_circuit(const Patch& patch, Level level) {
-  return Builder(patch, level).build();
+Circuit build_circuit(const ScaledProgram& program, Level level) {
+  return Builder(program, level).build();
 }
 
 }  // namespace gearpatch::circuit

@@ -10,8 +10,8 @@
 #include "solver/signal.h"
 
 namespace gearpatch {
-struct Patch;
-struct PatchOptions;
+struct ScaledProgram;
+struct ScalingOptions;
 }  // namespace gearpatch
 
 namespace gearpatch::circuit {
@@ -71,7 +71,7 @@ struct NodeMeaning {
 struct Probe {
   std::string node;
   double full_scale = 1;
-  /// The signal's simulated peak in machine units where the patch checked
+  /// The signal's simulated peak in machine units where the program checked
   /// its peaks, else the scale's 1 MU: the oscilloscope's scale follows it.
   double peak_mu = 1;
 };
@@ -102,7 +102,7 @@ struct Circuit {
   std::map<std::string, NodeMeaning> nodes;
   double beta = 1;                              ///< machine time = β · real time
   bool autoscaled = false;                      ///< scaled from the simulated peaks (--autoscale)
-  std::string scaling = "paper";                ///< the deck header's word (Patch::scaling_name)
+  std::string scaling = "paper";                ///< the deck header's word (ScaledProgram::scaling_name)
   double duration = 1;                          ///< real time, s
 
   /// Every node an op-amp drives in its linear range (the overload check);
@@ -125,9 +125,9 @@ struct Circuit {
 /// back: 5e-3 MU (50 mV).
 double comparator_offset(Level level);
 
-/// The patch options a circuit of `level` is scaled with: its comparator
+/// The program options a circuit of `level` is scaled with: its comparator
 /// offsets, and the self-locking catch bounded at the ideal level.
-PatchOptions patch_options_for(Level level);
+ScalingOptions patch_options_for(Level level);
 
 /// Width of the linear band of the friction characteristic sign(φ̇) (blocks
 /// 2, 14), in machine units: inside it friction acts as a steep viscous term,
@@ -151,8 +151,8 @@ double lock_band(Level level, double gbw_hz, double loop_rate);
 /// that a held secondary reads as stopped.
 double lock_release(Level level);
 
-/// The circuit that solves (6.1)–(6.10) with the patch's settings at the
-/// given level on the patch's machine, holding only the blocks the scene needs.
-Circuit build_circuit(const Patch& patch, Level level);
+/// The circuit that solves (6.1)–(6.10) with the program's settings at the
+/// given level on the program's machine, holding only the blocks the scene needs.
+Circuit build_circuit(const ScaledProgram& program, Level level);
 
 }  // namespace gearpatch::circuit

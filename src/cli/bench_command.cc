@@ -3,8 +3,8 @@
 #include <filesystem>
 #include <fmt/format.h>
 
-#include "bench/bench.h"
-#include "bench/bench_report.h"
+#include "tradeoff/tradeoff.h"
+#include "tradeoff/tradeoff_report.h"
 #include "circuit/quality.h"
 #include "cli/command.h"
 #include "cli/options.h"
@@ -53,10 +53,10 @@ std::string presets_text() {
 
 /// The bench's options from the command line (Error for a bad one), before
 /// any output target is checked.
-bench::BenchOptions bench_options(const po::variables_map& vm) {
+tradeoff::BenchOptions bench_options(const po::variables_map& vm) {
   const std::vector<std::string> families = {"reference", "max-step", "reltol", "method", "grid",
                                              "preset",    "level"};
-  bench::BenchOptions o;
+  tradeoff::BenchOptions o;
   o.scene_files = vm.count("scene") ? vm["scene"].as<std::vector<std::string>>() : example_scene_files();
   if (o.scene_files.empty()) throw Error("no SCENE given and no scenes/*.ini here (see --help)");
   if (vm.count("only")) {
@@ -66,7 +66,7 @@ bench::BenchOptions bench_options(const po::variables_map& vm) {
         throw Error(fmt::format("--only {}: not a family (reference, max-step, reltol, method, grid, preset, "
                                 "level)", f));
     o.reference = std::find(chosen.begin(), chosen.end(), "reference") != chosen.end();
-    o.knobs = bench::select_knobs(o.knobs, chosen);
+    o.knobs = tradeoff::select_knobs(o.knobs, chosen);
   }
   o.min_seconds = vm["min-time"].as<double>();
   if (!(o.min_seconds >= 0)) throw Error("--min-time must be >= 0");
@@ -79,21 +79,21 @@ bench::BenchOptions bench_options(const po::variables_map& vm) {
 
 /// Stages and commits the bench's outputs; the table goes to stderr when it
 /// has no target of its own, and a plot that cannot be drawn is a warning.
-void write_outputs(const bench::BenchResult& result, const po::variables_map& vm, OutputSet& outputs,
+void write_outputs(const tradeoff::BenchResult& result, const po::variables_map& vm, OutputSet& outputs,
                    const std::string& table_to, const std::string& plot_as) {
-  const std::string table = bench::to_table(result);
+  const std::string table = tradeoff::to_table(result);
   std::string plot_warning;
   if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", json_text(bench::to_json(result)));
+  if (outputs.has("--json")) outputs.stage("--json", json_text(tradeoff::to_json(result)));
   if (outputs.has("--plot")) {
     try {  // the measurements stand without their picture
-      outputs.stage("--plot", bench::plot_image(result, plot_as));
+      outputs.stage("--plot", tradeoff::plot_image(result, plot_as));
     } catch (const Error& e) {
       plot_warning = e.what();
     }
   }
   if (outputs.has("--markdown"))
-    outputs.stage("--markdown", bench::to_markdown(result, vm.count("plot") && plot_warning.empty() ? vm["plot"].as<std::string>() : ""));
+    outputs.stage("--markdown", tradeoff::to_markdown(result, vm.count("plot") && plot_warning.empty() ? vm["plot"].as<std::string>() : ""));
   outputs.commit();
   if (table_to.empty()) std::fputs(table.c_str(), stderr);
   if (!plot_warning.empty())
@@ -141,7 +141,7 @@ int run_bench(const std::vector<std::string>& args) {
            "gearpatch bench scenes/bild5b.ini --only level --markdown bench.md --plot work-precision.svg"},
           vm, false))
     return 0;
-  bench::BenchOptions o = bench_options(vm);
+  tradeoff::BenchOptions o = bench_options(vm);
   OutputSet outputs;  // every target checked now, before the run
   const std::string table_to = main_output(vm, {"json", "plot", "markdown"});
   if (!table_to.empty()) outputs.add("--out", table_to);
@@ -151,10 +151,10 @@ int run_bench(const std::vector<std::string>& args) {
   o.command = "gearpatch bench";
   for (const std::string& a : args) o.command += " " + a;
   o.progress = [](const std::string& line) { std::fprintf(stderr, "gearpatch bench: %s\n", line.c_str()); };
-  o.machine = bench::collect_machine_info();
+  o.host = tradeoff::collect_host_info();
 
   auto simulator = spice::make_batch_ngspice();
-  const bench::BenchResult result = bench::run_bench(o, *simulator);
+  const tradeoff::BenchResult result = tradeoff::run_bench(o, *simulator);
   write_outputs(result, vm, outputs, table_to, plot_as);
   return 0;
 }

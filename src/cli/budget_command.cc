@@ -9,7 +9,7 @@
 #include "common/process.h"
 #include "runs/pool.h"
 #include "scene/scene.h"
-#include "tolerance/error_budget.h"
+#include "component_spread/error_budget.h"
 
 namespace gearpatch::cli {
 
@@ -49,10 +49,10 @@ int run_budget(const std::vector<std::string>& args) {
   o.transient = chosen_quality(vm);
   o.limits.timeout = timeout_from_seconds(vm["timeout"].as<double>());
   CommandOutputs out(vm, {"json"});
-  const tolerance::ErrorBudget budget = tolerance::error_budget(scene, o, workers_option(vm));
-  const std::string table = tolerance::to_table(budget);
+  const component_spread::ErrorBudget budget = component_spread::error_budget(scene, o, workers_option(vm));
+  const std::string table = component_spread::to_table(budget);
   if (out.set.has("--out")) out.set.stage("--out", table);
-  if (out.set.has("--json")) out.set.stage("--json", json_text(tolerance::to_json(budget)));
+  if (out.set.has("--json")) out.set.stage("--json", json_text(component_spread::to_json(budget)));
   out.commit(table);
   return budget.failed.empty() ? 0 : 3;
 }

@@ -7,7 +7,7 @@
 #include "common/error.h"
 #include "common/gnuplot.h"
 #include "common/output_set.h"
-#include "figures/paper_figures.h"
+#include "paper_plots/paper_plots.h"
 
 namespace gearpatch::cli {
 namespace {
@@ -68,16 +68,16 @@ int run_figures(const std::vector<std::string>& args) {
   MadeFolders made(dir);
   OutputSet outputs;  // every target checked, and gnuplot found, before the first run
   plot_format((dir / ("bild5a." + format)).string(), "-o");
-  for (const figures::PaperFigure& f : figures::paper_figures()) {
+  for (const paper_plots::PaperFigure& f : paper_plots::paper_figures()) {
     const std::string scene = (scenes / (f.scene + ".ini")).string();
     if (!std::filesystem::exists(scene, ec)) throw Error(fmt::format("--scenes {}: no {}", scenes.string(), scene));
     outputs.add("Bild " + f.bild, (dir / (f.scene + "." + format)).string());
   }
   outputs.add("numbers", (dir / "figures.json").string());
   nlohmann::json numbers = nlohmann::json::array();
-  for (const figures::PaperFigure& f : figures::paper_figures()) {
+  for (const paper_plots::PaperFigure& f : paper_plots::paper_figures()) {
     std::fprintf(stderr, "gearpatch figures: Bild %s (%s)...\n", f.bild.c_str(), f.scene.c_str());
-    figures::Redrawn r = figures::redraw(f, (scenes / (f.scene + ".ini")).string(), format);
+    paper_plots::Redrawn r = paper_plots::redraw(f, (scenes / (f.scene + ".ini")).string(), format);
     outputs.stage("Bild " + f.bild, r.image);
     numbers.push_back(std::move(r.numbers));
   }

@@ -2,7 +2,7 @@
 #include "cli/options.h"
 #include "runs/job_list.h"
 #include "sweep/sweep_outputs.h"
-#include "tolerance/monte_carlo.h"
+#include "component_spread/monte_carlo.h"
 
 namespace gearpatch::cli {
 
@@ -31,7 +31,7 @@ int run_merge(const std::vector<std::string>& args) {
   const runs::RunFolder folder(*dir);
   const auto get = [&](const char* name) { return vm.count(name) ? vm[name].as<std::string>() : std::string(); };
   const runs::Manifest manifest = folder.manifest();
-  if (tolerance::is_monte_carlo(manifest.study)) {
+  if (component_spread::is_monte_carlo(manifest.study)) {
     if (vm.count("csv") || vm.count("figures-plot")) throw Error("merge: --csv and --figures-plot are a sweep's; a Monte Carlo has --json and --plot");
     return merge_monte_carlo(folder, manifest, {main_output(vm, {"json"}), get("json"), get("plot")});
   }

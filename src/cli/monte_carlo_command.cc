@@ -16,17 +16,17 @@
 #include "runs/run_files.h"
 #include "sweep/study_inputs.h"
 #include "scene/scene.h"
-#include "tolerance/component_draw.h"
-#include "tolerance/monte_carlo.h"
-#include "tolerance/monte_carlo_summary.h"
+#include "component_spread/component_draw.h"
+#include "component_spread/monte_carlo.h"
+#include "component_spread/monte_carlo_summary.h"
 
 namespace gearpatch::cli {
 namespace {
 
 constexpr std::size_t most_draws = runs::most_jobs;
 
-tolerance::MonteCarloStudy study_from_options(const po::variables_map& vm) {
-  tolerance::MonteCarloStudy s;
+component_spread::MonteCarloStudy study_from_options(const po::variables_map& vm) {
+  component_spread::MonteCarloStudy s;
   s.scene_path = std::filesystem::absolute(single_file(vm, "monte-carlo")).lexically_normal().string();
   s.machine = chosen_machine(vm);
   // a profile file is named absolutely: the study records it, the run folder holds its text
@@ -72,22 +72,22 @@ const nlohmann::json& result_schema() {
   return schema;
 }
 
-tolerance::MonteCarloStudy manifest_study(const runs::Manifest& m, const std::string& source) {
+component_spread::MonteCarloStudy manifest_study(const runs::Manifest& m, const std::string& source) {
   runs::check_schema(m.study, study_schema(), source + ": study");
-  return tolerance::study_from_json(m.study);
+  return component_spread::study_from_json(m.study);
 }
 
-std::vector<runs::Job> draw_jobs(const tolerance::MonteCarloStudy& s) {
+std::vector<runs::Job> draw_jobs(const component_spread::MonteCarloStudy& s) {
   std::vector<runs::Job> jobs;
   for (std::size_t i = 0; i < s.runs; ++i) {
-    const std::uint64_t seed = tolerance::draw_seed(s.seed, i);
+    const std::uint64_t seed = component_spread::draw_seed(s.seed, i);
     jobs.push_back({fmt::format("draw {} (seed {})", i, seed), {{"index", i}, {"seed", seed}}});
   }
   return jobs;
 }
 
 /// Error naming `source` unless the manifest lists the study's draws, in order.
-void check_draws(const tolerance::MonteCarloStudy& s, const runs::Manifest& m, const std::string& source) {
+void check_draws(const component_spread::MonteCarloStudy& s, const runs::Manifest& m, const std::string& source) {
   const std::vector<runs::Job> jobs = draw_jobs(s);
   if (jobs.size() != m.labels.size())
     throw Error(fmt::format("{}: the study has {} draws but it lists {} jobs", source, jobs.size(), m.labels.size()));
@@ -119,9 +119,9 @@ void check_alike(const std::vector<runs::JobOutcome>& outcomes, const runs::RunF
 }  // namespace
 
 nlohmann::json run_monte_carlo_job(const runs::RunFolder& folder, const runs::Manifest& manifest, std::size_t index) {
-  tolerance::MonteCarloStudy s = manifest_study(manifest, (folder.dir() / "manifest.json").string());
+  component_spread::MonteCarloStudy s = manifest_study(manifest, (folder.dir() / "manifest.json").string());
   const nlohmann::json input = folder.job_input(manifest, index);
-  if (input.value("seed", nlohmann::json()) != tolerance::draw_seed(s.seed, index))
+  if (input.value("seed", nlohmann::json()) != component_spread::draw_seed(s.seed, index))
     throw Error(fmt::format("{}: its seed is not draw {}'s", folder.input_path(index).string(), index));
   if (!manifest.machine_file && !sweep::shipped_machine(s.machine))
     throw Error(fmt::format("{}: machine {}: no shipped profile, and no inputs/machine.ini",
@@ -129,7 +129,7 @@ nlohmann::json run_monte_carlo_job(const runs::RunFolder& folder, const runs::Ma
   s.scene_path = folder.scene_path(manifest).string();
   if (manifest.machine_file) s.machine = folder.machine_path().string();
   const ScratchDir scratch("gearpatch-job");
-  tolerance::run_draw(s, index, (scratch / "draw.json").string());
+  component_spread::run_draw(s, index, (scratch / "draw.json").string());
   return nlohmann::json::parse(read_file((scratch / "draw.json").string()));
 }
 
@@ -144,11 +144,11 @@ int merge_monte_carlo(const runs::RunFolder& folder, const runs::Manifest& manif
   check_draws(study, manifest, source);
   const std::vector<runs::JobOutcome> outcomes = runs::collect_results(folder, manifest, result_schema());
   check_alike(outcomes, folder);
-  const tolerance::MonteCarloSummary summary = tolerance::summarise(study, outcomes);
-  const std::string table = tolerance::to_table(summary);
+  const component_spread::MonteCarloSummary summary = component_spread::summarise(study, outcomes);
+  const std::string table = component_spread::to_table(summary);
   if (outputs.has("--out")) outputs.stage("--out", table);
-  if (outputs.has("--json")) outputs.stage("--json", tolerance::to_json(summary).dump(2) + "\n");
-  if (outputs.has("--plot")) outputs.stage("--plot", tolerance::histogram_image(summary, plot_as));
+  if (outputs.has("--json")) outputs.stage("--json", component_spread::to_json(summary).dump(2) + "\n");
+  if (outputs.has("--plot")) outputs.stage("--plot", component_spread::histogram_image(summary, plot_as));
   outputs.commit();
   if (paths.table.empty()) std::fputs(table.c_str(), stderr);
   return summary.failed.empty() ? 0 : 3;
@@ -187,13 +187,13 @@ int run_monte_carlo(const std::vector<std::string>& args) {
                         "parallel --sshloginfile HOSTS < runs/mc/jobs.txt   # then: gearpatch merge runs/mc"},
                        vm))
     return 0;
-  const tolerance::MonteCarloStudy study = study_from_options(vm);
+  const component_spread::MonteCarloStudy study = study_from_options(vm);
   load_scene(study.scene_path, study.machine);  // a bad scene or machine refused before anything is written
   const std::vector<runs::Job> jobs = draw_jobs(study);
   const runs::StudyInputs inputs = sweep::study_inputs(study.scene_path, study.machine);
   if (vm.count("job-list")) {
     const runs::RunFolder folder(vm["job-list"].as<std::string>());
-    folder.create(tolerance::to_json(study), inputs, jobs);
+    folder.create(component_spread::to_json(study), inputs, jobs);
     print_run_folder_hint("monte-carlo", folder, jobs.size());
     return 0;
   }
@@ -205,7 +205,7 @@ int run_monte_carlo(const std::vector<std::string>& args) {
   if (!vm.count("run-dir")) scratch.emplace("gearpatch-monte-carlo");
   const runs::RunFolder folder(scratch ? scratch->path() / "run"
                                        : std::filesystem::path(vm["run-dir"].as<std::string>()));
-  folder.create(tolerance::to_json(study), inputs, jobs);
+  folder.create(component_spread::to_json(study), inputs, jobs);
   fmt::print(stderr, "gearpatch monte-carlo: {} draws on {} workers\n", jobs.size(), workers);
   runs::run_jobs(folder, jobs, workers, "gearpatch monte-carlo");
   return merge_monte_carlo(folder, folder.manifest(), paths);

@@ -9,7 +9,7 @@
 #include "cli/options.h"
 #include "common/output_set.h"
 #include "common/error.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/scene_inputs.h"
 
 namespace gearpatch::cli {
@@ -40,12 +40,12 @@ int run_netlist(const std::vector<std::string>& args) {
   CommandOutputs out(vm, {});  // the target checked now, before the work
   const circuit::Level level = circuit::parse_level(vm["level"].as<std::string>());
   const Scene scene = load_scene(*file, chosen_machine(vm));
-  PatchOptions patch_options = circuit::patch_options_for(level);
-  patch_options.autoscale = vm.count("autoscale") > 0;
-  patch_options.check_peaks = patch_options.autoscale;
-  if (paper_scaling(vm)) patch_options.method = ScalingMethod::paper;
+  ScalingOptions scaling_options = circuit::patch_options_for(level);
+  scaling_options.autoscale = vm.count("autoscale") > 0;
+  scaling_options.check_peaks = scaling_options.autoscale;
+  if (paper_scaling(vm)) scaling_options.method = ScalingMethod::paper;
   const circuit::Circuit c = with_scene(
-      scene, [&] { return circuit::build_circuit(make_patch(scene, patch_options), level); });
+      scene, [&] { return circuit::build_circuit(scale_program(scene, scaling_options), level); });
   // The step the scene's contact period needs, as verify takes it.
   const circuit::TransientControl control =
       circuit::scene_control(chosen_quality(vm), gear_parameters(scene), scene.duration);

@@ -7,12 +7,12 @@
 #include "common/json_text.h"
 #include "patching/patch_picture.h"
 #include "patching/patch_sheet.h"
-#include "tolerance/patch_request.h"
+#include "component_spread/patch_request.h"
 
 namespace gearpatch::cli {
 namespace {
 
-po::options_description patch_options() {
+po::options_description scaling_options() {
   po::options_description options("patch options");
   options.add_options()
       ("picture", po::value<std::string>(), "draw the patch in analog-computer notation to FILE (.svg or .png, "
@@ -50,8 +50,8 @@ const std::vector<std::string> patch_examples = {"gearpatch patch scenes/bild5b.
     "gearpatch patch scenes/bild5b.ini --machine the-analog-thing --level ideal --json "
     "bild5b.sheet.json && gearpatch verify scenes/bild5b.ini --patch bild5b.sheet.json"};
 
-tolerance::PatchRequest patch_request(const po::variables_map& vm, const std::string& file) {
-  tolerance::PatchRequest r;
+component_spread::PatchRequest patch_request(const po::variables_map& vm, const std::string& file) {
+  component_spread::PatchRequest r;
   r.scene_file = file;
   r.machine = chosen_machine(vm);
   r.autoscale = vm.count("autoscale") > 0;
@@ -65,14 +65,14 @@ tolerance::PatchRequest patch_request(const po::variables_map& vm, const std::st
 
 int run_patch(const std::vector<std::string>& args) {
   po::variables_map vm;
-  const auto file = parse_command(args, "patch", patch_usage, patch_options(), patch_examples, vm);
+  const auto file = parse_command(args, "patch", patch_usage, scaling_options(), patch_examples, vm);
   if (!file) return 0;
   CommandOutputs out(vm, {"json", "dot"}, {"picture"});  // every target checked now, before the work
   const std::string picture_as = out.set.has("--picture") ? patching::picture_format(out.set.path("--picture")) : "";
-  const tolerance::CheckedPatch p = tolerance::patch_request(patch_request(vm, *file), progress_on_stderr("patch"));
+  const component_spread::CheckedPatch p = component_spread::patch_request(patch_request(vm, *file), progress_on_stderr("patch"));
   const std::string sheet = patching::to_text(p.patch);
   if (out.set.has("--out")) out.set.stage("--out", sheet);
-  if (out.set.has("--json")) out.set.stage("--json", json_text(tolerance::to_json(p)));
+  if (out.set.has("--json")) out.set.stage("--json", json_text(component_spread::to_json(p)));
   const std::string dot = patching::to_dot(p.patch.wiring);
   if (out.set.has("--dot")) out.set.stage("--dot", dot);
   if (out.set.has("--picture")) out.set.stage("--picture", patching::draw_with_dot(dot, picture_as));

@@ -8,7 +8,7 @@
 #include "common/output_set.h"
 #include "patching/machine_patch.h"
 #include "patching/patch_sheet.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/drive_report.h"
 #include "scene/scene_inputs.h"
 
@@ -46,7 +46,7 @@ int run_settings(const std::vector<std::string>& args) {
                        vm);
   if (!file) return 0;
   CommandOutputs out(vm, {"json"});  // the targets checked now, before the run
-  PatchOptions o;
+  ScalingOptions o;
   o.autoscale = vm.count("autoscale") > 0;
   if (paper_scaling(vm)) o.method = ScalingMethod::paper;
   o.check_peaks = vm.count("no-check") == 0;
@@ -56,17 +56,17 @@ int run_settings(const std::vector<std::string>& args) {
   o.comparator_offset = number_option(vm, "comparator-offset", 0, 0.5, true);  // in MU, below half the unit
   if (vm.count("beta")) o.beta = number_option(vm, "beta", 1e-6, 1e6);  // as machine.time_scale
   const Scene scene = load_scene(*file, chosen_machine(vm));
-  const Patch patch = make_patch(scene, o);
-  std::string table = drive_report(scene) + to_table(patch);
+  const ScaledProgram program = scale_program(scene, o);
+  std::string table = drive_report(scene) + to_table(program);
   // Only for a chosen machine, so that a scene without one keeps its table.
   if (!chosen_machine(vm).empty() || scene.lines.count("machine.profile"))
-    table += "\nmachine: " + patching::fit_summary(patching::patch_on_machine(patch).allocation) +
+    table += "\nmachine: " + patching::fit_summary(patching::patch_on_machine(program).allocation) +
              "\n  (gearpatch patch SCENE --machine " + scene.machine.name + " writes the patch sheet)\n";
   if (out.set.has("--out")) out.set.stage("--out", table);
-  if (out.set.has("--json")) out.set.stage("--json", json_text(to_json(patch)));
+  if (out.set.has("--json")) out.set.stage("--json", json_text(to_json(program)));
   out.commit(table);
   if (out.main_to != "-")  // the table on the terminal lists them
-    for (const auto& w : patch.warnings) std::fprintf(stderr, "gearpatch settings: warning: %s\n", w.c_str());
+    for (const auto& w : program.warnings) std::fprintf(stderr, "gearpatch settings: warning: %s\n", w.c_str());
   return 0;
 }
 

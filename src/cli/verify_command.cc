@@ -10,7 +10,7 @@
 #include "common/json_text.h"
 #include "common/output_set.h"
 #include "common/process.h"
-#include "tolerance/verify_request.h"
+#include "component_spread/verify_request.h"
 #include "verify/report.h"
 
 namespace gearpatch::cli {
@@ -108,9 +108,9 @@ std::optional<std::string> optional_file(const po::variables_map& vm, const std:
   return vm.count(name) ? std::optional(vm[name].as<std::string>()) : std::nullopt;
 }
 
-tolerance::VerifyRequest verify_request(const po::variables_map& vm, const std::string& file,
+component_spread::VerifyRequest verify_request(const po::variables_map& vm, const std::string& file,
                                         verify::VerifyOptions o) {
-  tolerance::VerifyRequest r;
+  component_spread::VerifyRequest r;
   r.scene_file = file;
   r.machine = chosen_machine(vm);
   r.deck_file = optional_file(vm, "deck");
@@ -139,12 +139,12 @@ int run_verify(const std::vector<std::string>& args) {
   // every target checked now, before the run; --keep-deck is written before the run, not staged
   CommandOutputs out(vm, {"json", "plot", "keep-deck"});
   const std::string plot_as = out.set.has("--plot") ? plot_format(out.set.path("--plot")) : "";
-  const tolerance::VerdictReport report =
-      tolerance::verify_request(verify_request(vm, *file, o), progress_on_stderr("verify"));
-  const std::string table = tolerance::to_table(report);
+  const component_spread::VerdictReport report =
+      component_spread::verify_request(verify_request(vm, *file, o), progress_on_stderr("verify"));
+  const std::string table = component_spread::to_table(report);
   std::vector<std::string> warnings;
   if (out.set.has("--out")) out.set.stage("--out", table);
-  if (out.set.has("--json")) out.set.stage("--json", json_text(tolerance::to_json(report)));
+  if (out.set.has("--json")) out.set.stage("--json", json_text(component_spread::to_json(report)));
   if (out.set.has("--plot"))
     stage_plot(out.set, "--plot", [&] { return verify::plot_image(report.result, plot_as); }, warnings);
   out.commit(table);

@@ -9,7 +9,7 @@
 #include "common/atomic_file.h"
 #include "common/error.h"
 #include "common/numbers.h"
-#include "common/option_error.h"
+#include "common/ini_reader.h"
 #include "machine/embedded_machines.h"
 
 namespace gearpatch {

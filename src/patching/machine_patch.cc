@@ -70,9 +70,9 @@ void count_from(Allocation& a, const Wiring& w) {
 
 }  // namespace
 
-MachinePatch patch_on_machine(const Patch& patch, circuit::Level level) {
+MachinePatch patch_on_machine(const ScaledProgram& program, circuit::Level level) {
   MachinePatch p;
-  p.circuit = circuit::build_circuit(patch, level);
+  p.circuit = circuit::build_circuit(program, level);
   p.allocation = allocate(p.circuit);
   p.wiring = wire_up(p.circuit);
   count_from(p.allocation, p.wiring);

@@ -2,11 +2,11 @@
 #include "circuit/circuit.h"
 #include "patching/allocation.h"
 #include "patching/wiring.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 
 namespace gearpatch::patching {
 
-/// The circuit of a patch as it is wired on its machine (by default the
+/// The circuit of a program as it is wired on its machine (by default the
 /// hardware level's comparator offsets and bands), its allocation onto the
 /// machine's elements and the wiring a person plugs, whose counts the
 /// allocation's fit reports.
@@ -16,6 +16,6 @@ struct MachinePatch {
   Wiring wiring;
 };
 
-MachinePatch patch_on_machine(const Patch& patch, circuit::Level level = circuit::Level::hardware);
+MachinePatch patch_on_machine(const ScaledProgram& program, circuit::Level level = circuit::Level::hardware);
 
 }  // namespace gearpatch::patching

@@ -34,7 +34,7 @@ struct PhysicalPeaks {
 PhysicalPeaks simulate_peaks(const ScalingInput& input, const std::vector<Output>& more = {});
 
 /// The reference run the peak check rests on: its peaks, or the error that
-/// stopped it (make_patch then warns, or refuses to autoscale).
+/// stopped it (scale_program then warns, or refuses to autoscale).
 struct PeakRun {
   std::optional<PhysicalPeaks> peaks;
   std::optional<Error> failure;

@@ -13,7 +13,7 @@
 #include "common/error.h"
 #include "common/numbers.h"
 #include "common/utf8.h"
-#include "common/option_error.h"
+#include "common/ini_reader.h"
 #include "machine/machine_file.h"
 #include "model/stage_reduction.h"
 #include "scene/drive_table.h"

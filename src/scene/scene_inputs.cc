@@ -76,8 +76,8 @@ Error located(const Scene& scene, const Error& error) {
   return Error((key.empty() ? scene.source : scene.where(key)) + ": " + error.what(), error.kind());
 }
 
-Patch make_patch(const Scene& scene, const PatchOptions& options) {
-  return with_scene(scene, [&] { return make_patch(scaling_input(scene), options); });
+ScaledProgram scale_program(const Scene& scene, const ScalingOptions& options) {
+  return with_scene(scene, [&] { return scale_program(scaling_input(scene), options); });
 }
 
 }  // namespace gearpatch

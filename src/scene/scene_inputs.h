@@ -3,7 +3,7 @@
 
 #include "common/error.h"
 #include "model/gear_model.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scaling/scaling_input.h"
 #include "scene/scene.h"
 #include "solver/integrate.h"
@@ -42,7 +42,7 @@ auto with_scene(const Scene& scene, Work&& work) -> decltype(work()) {
   }
 }
 
-/// make_patch for the scene, its errors located in the scene file.
-Patch make_patch(const Scene& scene, const PatchOptions& options = {});
+/// scale_program for the scene, its errors located in the scene file.
+ScaledProgram scale_program(const Scene& scene, const ScalingOptions& options = {});
 
 }  // namespace gearpatch

@@ -20,7 +20,7 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 struct Column {
   const char* name;
   const char* unit;
-  double (*of)(const PointFigures&);
+  double (*of)(const PointMetrics&);
 };
 
 double mean(const std::vector<double>& v) {
@@ -32,27 +32,27 @@ double mean(const std::vector<double>& v) {
 
 const std::vector<Column>& columns() {
   static const std::vector<Column> list = {
-      {"impacts", "", [](const PointFigures& f) { return double(f.impacts); }},
-      {"restitution_mean", "", [](const PointFigures& f) { return mean(f.restitution); }},
-      {"restitution_min", "", [](const PointFigures& f) {
+      {"impacts", "", [](const PointMetrics& f) { return double(f.impacts); }},
+      {"restitution_mean", "", [](const PointMetrics& f) { return mean(f.restitution); }},
+      {"restitution_min", "", [](const PointMetrics& f) {
          return f.restitution.empty() ? nan : *std::min_element(f.restitution.begin(), f.restitution.end()); }},
-      {"restitution_max", "", [](const PointFigures& f) {
+      {"restitution_max", "", [](const PointMetrics& f) {
          return f.restitution.empty() ? nan : *std::max_element(f.restitution.begin(), f.restitution.end()); }},
-      {"peak_torque", "N·m", [](const PointFigures& f) { return f.peak_torque; }},
-      {"peak_twist", "rad", [](const PointFigures& f) { return f.peak_twist; }},
-      {"settling_time", "s", [](const PointFigures& f) { return f.settling_time; }},
-      {"momentum_mean", "rad/s", [](const PointFigures& f) { return f.momentum_mean; }},
-      {"drive_work", "J", [](const PointFigures& f) { return f.drive_work; }},
-      {"load_work", "J", [](const PointFigures& f) { return f.load_work; }},
-      {"dissipated", "J", [](const PointFigures& f) { return f.dissipated; }},
-      {"energy_change", "J", [](const PointFigures& f) { return f.energy_change; }},
-      {"energy_residual", "J", [](const PointFigures& f) { return f.energy_residual; }},
-      {"drive_impulse", "N·m·s", [](const PointFigures& f) { return f.drive_impulse; }},
-      {"load_impulse", "N·m·s", [](const PointFigures& f) { return f.load_impulse; }},
-      {"friction_impulse", "N·m·s", [](const PointFigures& f) { return f.friction_impulse; }},
-      {"momentum_change", "N·m·s", [](const PointFigures& f) { return f.momentum_change; }},
-      {"momentum_residual", "N·m·s", [](const PointFigures& f) { return f.momentum_residual; }},
-      {"residual_fraction", "", [](const PointFigures& f) { return f.residual_fraction; }},
+      {"peak_torque", "N·m", [](const PointMetrics& f) { return f.peak_torque; }},
+      {"peak_twist", "rad", [](const PointMetrics& f) { return f.peak_twist; }},
+      {"settling_time", "s", [](const PointMetrics& f) { return f.settling_time; }},
+      {"momentum_mean", "rad/s", [](const PointMetrics& f) { return f.momentum_mean; }},
+      {"drive_work", "J", [](const PointMetrics& f) { return f.drive_work; }},
+      {"load_work", "J", [](const PointMetrics& f) { return f.load_work; }},
+      {"dissipated", "J", [](const PointMetrics& f) { return f.dissipated; }},
+      {"energy_change", "J", [](const PointMetrics& f) { return f.energy_change; }},
+      {"energy_residual", "J", [](const PointMetrics& f) { return f.energy_residual; }},
+      {"drive_impulse", "N·m·s", [](const PointMetrics& f) { return f.drive_impulse; }},
+      {"load_impulse", "N·m·s", [](const PointMetrics& f) { return f.load_impulse; }},
+      {"friction_impulse", "N·m·s", [](const PointMetrics& f) { return f.friction_impulse; }},
+      {"momentum_change", "N·m·s", [](const PointMetrics& f) { return f.momentum_change; }},
+      {"momentum_residual", "N·m·s", [](const PointMetrics& f) { return f.momentum_residual; }},
+      {"residual_fraction", "", [](const PointMetrics& f) { return f.residual_fraction; }},
   };
   return list;
 }
@@ -127,7 +127,7 @@ std::string to_text(const SweepTable& t) {
       out += row(o.label, {"FAILED"});
       continue;
     }
-    const PointFigures f = figures_from_json(o.result->at("figures"));
+    const PointMetrics f = metrics_from_json(o.result->at("figures"));
     out += row(o.label, {std::to_string(f.impacts), number(mean(f.restitution)), number(f.peak_torque),
                          number(f.peak_twist), number(f.settling_time), number(f.momentum_mean),
                          number(f.drive_work), number(f.load_work), number(f.dissipated), number(f.energy_change),
@@ -148,7 +148,7 @@ std::string to_csv(const SweepTable& t) {
   for (const runs::JobOutcome& o : t.points) {
     out += std::to_string(o.index);
     for (const auto& [key, value] : assignments.at(o.index)) out += "," + value;
-    const PointFigures f = o.result ? figures_from_json(o.result->at("figures")) : PointFigures{};
+    const PointMetrics f = o.result ? metrics_from_json(o.result->at("figures")) : PointMetrics{};
     for (const Column& c : columns())
       out += "," + (o.result && std::isfinite(c.of(f)) ? fmt::format("{:.17g}", c.of(f)) : std::string());
     const nlohmann::json* v = verdict(o);
@@ -217,7 +217,7 @@ std::string figures_plot(const SweepTable& t, const std::string& format) {
         name != "restitution_min" && name != "restitution_max" && name.find("residual") == std::string::npos &&
         name.find("impulse") == std::string::npos)
       panels.push_back({c.name, c.unit, [of = c.of](const runs::JobOutcome& o) {
-                          return of(figures_from_json(o.result->at("figures")));
+                          return of(metrics_from_json(o.result->at("figures")));
                         }});
   if (t.study.options.verify)
     panels.push_back({"verify worst error", "% of full scale", [](const runs::JobOutcome& o) {

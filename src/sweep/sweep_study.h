@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "runs/job_list.h"
-#include "sweep/point_figures.h"
+#include "sweep/point_metrics.h"
 #include "sweep/sweep_axes.h"
 
 namespace gearpatch::sweep {

@@ -24,8 +24,8 @@ void overloads(const VerifyResult& r, std::vector<std::string>& out) {
       r.overloads.size(), worst->node, worst->value, 100 * (std::abs(worst->value) - 1), autoscale));
 }
 
-void small_settings(const Patch& patch, std::vector<std::string>& out) {
-  for (const Potentiometer& p : patch.potentiometers)
+void small_settings(const ScaledProgram& program, std::vector<std::string>& out) {
+  for (const Potentiometer& p : program.potentiometers)
     if (p.setting < 0.1 && p.setting > 0)
       out.push_back(fmt::format("{} is set to {:.4g} (< 0.1): small settings are imprecise on a real "
                                 "potentiometer; change β or the maxima", to_string(p.name), p.setting));
@@ -33,10 +33,10 @@ void small_settings(const Patch& patch, std::vector<std::string>& out) {
 
 }  // namespace
 
-std::vector<std::string> diagnose(const VerifyResult& r, const Patch& patch) {
+std::vector<std::string> diagnose(const VerifyResult& r, const ScaledProgram& program) {
   std::vector<std::string> out;
   overloads(r, out);
-  small_settings(patch, out);
+  small_settings(program, out);
   return out;
 }
 

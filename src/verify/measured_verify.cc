@@ -7,7 +7,7 @@
 #include "circuit/circuit.h"
 #include "model/gear_model.h"
 #include "patching/wiring.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 #include "verify/diagnosis.h"
@@ -55,7 +55,7 @@ void refuse_finer_than_resolution(const MeasuredTrace& m, double tolerance, cons
 }
 
 /// The comparison of the recording with the reference, as verify compares a deck's run.
-void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::Circuit& circuit, const Patch& patch,
+void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::Circuit& circuit, const ScaledProgram& program,
                        const GearModel& model, double run_duration) {
   // A recording that ends before the run is judged over what it holds.
   const double judged = m.span < run_duration * (1 - r.tolerance) ? m.span : run_duration;
@@ -74,7 +74,7 @@ void compare_recording(VerifyResult& r, const MeasuredTrace& m, const circuit::C
   const double dphi_resolution =
       dphi == m.resolution.end() ? 0 : 2 * dphi->fraction * circuit.probes.at(Signal::dphi).full_scale;
   settings.grazing_depth =
-      std::max(circuit::comparator_offset(r.level) * patch.maxima.contact_twist, dphi_resolution);
+      std::max(circuit::comparator_offset(r.level) * program.maxima.contact_twist, dphi_resolution);
   settings.contact_hysteresis = dphi_resolution;
   // The tube judges the smoothed trace; the impacts are read on the one
   // smoothed over half the window, which bends a contact's kink less.
@@ -133,14 +133,14 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
                                                      run_spec(scene).output_step);
     const PeakRun run = run_reference(input, {{step, recorder}});
     if (run.failure) throw *run.failure;
-    PatchOptions patch_options;
-    patch_options.comparator_offset = circuit::comparator_offset(r.level);
-    patch_options.lock_catch = false;
-    patch_options.autoscale = options.autoscale;
-    if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
-    const Patch patch = make_patch(input, patch_options, run);
-    r.warnings = patch.warnings;
-    const circuit::Circuit circuit = circuit::build_circuit(patch, r.level);
+    ScalingOptions scaling_options;
+    scaling_options.comparator_offset = circuit::comparator_offset(r.level);
+    scaling_options.lock_catch = false;
+    scaling_options.autoscale = options.autoscale;
+    if (options.paper_scaling) scaling_options.method = ScalingMethod::paper;
+    const ScaledProgram program = scale_program(input, scaling_options, run);
+    r.warnings = program.warnings;
+    const circuit::Circuit circuit = circuit::build_circuit(program, r.level);
     r.beta = circuit.beta, r.autoscaled = circuit.autoscaled, r.scaling = circuit.scaling;
 
     out.watch = sheet_watch_list(circuit);
@@ -150,13 +150,13 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     const MeasuredTrace& m = out.measured;
     refuse_finer_than_resolution(m, r.tolerance, mo.path);
 
-    compare_recording(r, m, circuit, patch, model, scene.duration);
+    compare_recording(r, m, circuit, program, model, scene.duration);
     judge_comparison(r);
     if (!r.passed) {
       r.diagnosis = what_the_trace_looks_like(m, r.reference, model, circuit, scene.duration, r.tolerance);
       if (r.diagnosis.empty()) r.diagnosis.push_back(too_coarse(r, m).value_or(unexplained_recording()));
       // The rules that read the run itself; the rest measure changed decks, which a recording has none of.
-      for (std::string& d : diagnose(r, patch)) r.diagnosis.push_back(std::move(d));
+      for (std::string& d : diagnose(r, program)) r.diagnosis.push_back(std::move(d));
     }
     r.source = measured_notes(out, mo.path);
     return out;

@@ -8,7 +8,7 @@
 #include "circuit/circuit.h"
 #include "circuit/quality.h"
 #include "model/gear_model.h"
-#include "scaling/patch.h"
+#include "scaling/scaled_program.h"
 #include "scene/scene_inputs.h"
 #include "solver/integrate.h"
 #include "verify/diagnosis.h"
@@ -127,12 +127,12 @@ double trace_change(const CircuitTrace& first, const CircuitTrace& second,
   return worst;
 }
 
-/// The patch options of a verify run: the level's comparator offsets and lock catch, and the scaling asked for.
-PatchOptions patch_options_of(const VerifyOptions& options) {
-  PatchOptions patch_options = circuit::patch_options_for(options.level);
-  patch_options.autoscale = options.autoscale;
-  if (options.paper_scaling) patch_options.method = ScalingMethod::paper;
-  return patch_options;
+/// The program options of a verify run: the level's comparator offsets and lock catch, and the scaling asked for.
+ScalingOptions patch_options_of(const VerifyOptions& options) {
+  ScalingOptions scaling_options = circuit::patch_options_for(options.level);
+  scaling_options.autoscale = options.autoscale;
+  if (options.paper_scaling) scaling_options.method = ScalingMethod::paper;
+  return scaling_options;
 }
 
 /// Runs the deck in ngspice, timed into r.ngspice_seconds. One bounded retry
@@ -181,16 +181,16 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.duration = scene.duration;
   r.tolerance = options.tolerance.value_or(default_tolerance(options.level));
   r.tolerance_given = options.tolerance.has_value();
-  // One run of the reference model serves the patch's peak check (its own
+  // One run of the reference model serves the program's peak check (its own
   // fine grid) and the comparison (the deck's output grid).
   const ScalingInput input = scaling_input(scene);
   const GearModel model(input.gear);
   r.gear = input.gear;
   TrajectoryRecorder recorder(model, r.reference);
   const PeakRun run = run_reference(input, {{reference_step(scene, options), recorder}});
-  const Patch patch = make_patch(input, patch_options_of(options), run);
-  r.warnings = patch.warnings;
-  circuit::Circuit circuit = circuit::build_circuit(patch, options.level);
+  const ScaledProgram program = scale_program(input, patch_options_of(options), run);
+  r.warnings = program.warnings;
+  circuit::Circuit circuit = circuit::build_circuit(program, options.level);
   if (options.alter_circuit) options.alter_circuit(circuit);
   r.beta = circuit.beta;
   r.autoscaled = circuit.autoscaled;
@@ -212,7 +212,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   settings.duration = scene.duration;
   settings.tolerance = r.tolerance;
   // A contact shallower than the comparator's offset on X' is below what the machine resolves.
-  settings.grazing_depth = circuit::comparator_offset(options.level) * patch.maxima.contact_twist;
+  settings.grazing_depth = circuit::comparator_offset(options.level) * program.maxima.contact_twist;
   r.comparison = compare(r.reference, r.circuit, model, settings);
   r.overloads = find_overloads(vectors, circuit, scene.machine.unit_volts);
   if (options.check_step && !options.deck_text)
@@ -220,7 +220,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
         halved_step_change(circuit, control, options, simulator, r, settings, scene.machine.unit_volts);
   judge(r);
   if (!r.passed)
-    r.diagnosis = diagnose(r, patch);
+    r.diagnosis = diagnose(r, program);
   return r;
 }
 

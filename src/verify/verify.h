@@ -61,7 +61,7 @@ struct VerifyResult {
   std::vector<Check> checks;           ///< every check judged, in the report's order
   std::vector<std::string> failures;   ///< one sentence per reason, empty when passed
   /// Causes of a failure read off the run itself (overloads, small settings);
-  /// the ones measured on changed copies are added by tolerance/verdict.h.
+  /// the ones measured on changed copies are added by component_spread/verdict.h.
   std::vector<std::string> diagnosis;
   std::vector<std::string> warnings;   ///< the patch's: overloads, hard-to-set coefficients
   Comparison comparison;
