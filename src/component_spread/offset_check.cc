@@ -106,7 +106,8 @@ std::vector<StageOffset> screen(const Circuit& c, const OffsetCheck& k) {
 
 /// Every offset zero but `subckt`'s, which is `volts`.
 Variant one_offset(const std::string& subckt, double volts) {
-  return {fmt::format("offset of {} at {:.3g} mV alone", subckt, 1e3 * volts), [subckt, volts](verify::VerifyOptions& o) {
+  const std::string name = subckt.empty() ? "every offset zero" : fmt::format("offset of {} at {:.3g} mV alone", subckt, 1e3 * volts);
+  return {name, [subckt, volts](verify::VerifyOptions& o) {
             also_alter(o, [subckt, volts](Circuit& c) {
               for (const Amplifier& a : c.amplifiers) c.machine.amplifier.offsets_by_name[amplifier_subckt(a)] = 0;
               if (!subckt.empty()) c.machine.amplifier.offsets_by_name[subckt] = volts;
