@@ -32,20 +32,13 @@ std::map<std::string, int> prefix_tests() {
 TEST_CASE("code decides on typed values: a string prefix is tested only where text is parsed", "[common]") {
   // Each place and why it may: it reads text from outside (a file, a line of
   // another program, the environment), where the prefix is the syntax.
-  const std::map<std::string, int> parsing = {
+  const std::map<std::string, int> allowed = {
       {"tradeoff/host_info.cc", 1},    // /proc/cpuinfo's "model name" lines
       {"common/process.cc", 1},        // LC_ALL= / LC_NUMERIC= entries of the environment
       {"scene/drive_table.cc", 1},     // a byte order mark
       {"scene/scene.cc", 3},           // a byte order mark; the INI sections machine. and maxima.
       {"verify/scope_formats.cc", 4},  // comment lines and unit headers of a recorded trace
   };
-  // Identities still written as text by the module that reads them back:
-  // error_budget's component names.
-  const std::map<std::string, int> untyped = {
-      {"component_spread/error_budget.cc", 2},
-  };
-  std::map<std::string, int> allowed = parsing;
-  allowed.insert(untyped.begin(), untyped.end());
   const std::map<std::string, int> found = prefix_tests();
   for (const auto& [file, count] : found) {
     INFO("src/" << file << " tests a string prefix " << count << " times");
