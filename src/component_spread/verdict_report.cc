@@ -79,7 +79,7 @@ namespace {
 
 std::string prediction_table(const VerdictReport& v) {
   std::string t = to_table(*v.budget);
-  if (v.result.deck_scaling != "generated")
+  if (v.result.deck_scaling != verify::DeckScaling::generated)
     t += "  (the budget is of the generated deck: the --deck's edits are not in it)\n";
   t += fmt::format("\nprediction beside the measurement (the budget does not judge; the tolerance of {:.3g} % "
                    "does)\n{:<9} {:>11} {:>11}\n",

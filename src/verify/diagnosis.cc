@@ -15,7 +15,7 @@ void overloads(const VerifyResult& r, std::vector<std::string>& out) {
     return std::abs(a.value) < std::abs(b.value);
   });
   // A --deck with a header keeps its scaling: the fix is a new deck, not an option.
-  const char* autoscale = r.deck_scaling == "header" ? "write the deck again with gearpatch netlist --autoscale"
+  const char* autoscale = r.deck_scaling == DeckScaling::header ? "write the deck again with gearpatch netlist --autoscale"
                                                      : "run with --autoscale";
   out.push_back(fmt::format(
       "overload: {} amplifier output(s) leave 1 MU, worst {} at {:.4g} MU ({:.2g} % over): the scaling "

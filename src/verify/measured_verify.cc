@@ -123,7 +123,7 @@ MeasuredVerify verify_measured(const Scene& scene, const VerifyOptions& options,
     r.level = circuit::Level::hardware;  // a real machine
     r.duration = scene.duration;
     r.tolerance = options.tolerance.value_or(default_tolerance(r.level));
-    r.deck_scaling = "measured";
+    r.deck_scaling = DeckScaling::measured;
     const ScalingInput input = scaling_input(scene);
     const GearModel model(input.gear);
     r.gear = input.gear;

@@ -51,9 +51,9 @@ std::string measurement_table(const VerifyResult& r) {
                                 : "";
   std::string t = fmt::format("verify {}: level {}, tolerance {:.3g} % of full scale{}, beta {:.6g}\n\n", r.scene,
                               level_name(r.level), 100 * r.tolerance, given, r.beta);
-  if (r.deck_scaling == "header" || r.deck_scaling == "options")
+  if (r.deck_scaling == DeckScaling::header || r.deck_scaling == DeckScaling::options)
     t += fmt::format("deck: {}; read back as level {}, {} scaling\n\n",
-                     r.deck_scaling == "header" ? "--deck, level and scaling from its gearpatch header"
+                     r.deck_scaling == DeckScaling::header ? "--deck, level and scaling from its gearpatch header"
                                                 : "--deck without a gearpatch header, level and scaling "
                                                   "from the options (not checked against the deck)",
                      level_name(r.level), r.scaling);
@@ -114,7 +114,7 @@ nlohmann::json to_json(const VerifyResult& r) {
   j["checks"] = nlohmann::json::object();
   for (const Check& c : r.checks) j["checks"][c.name] = c.passed;
   j["beta"] = r.beta;
-  j["deck_scaling"] = r.deck_scaling;  // generated, header or options
+  j["deck_scaling"] = to_string(r.deck_scaling);
   j["scaling"] = r.scaling;
   j["ngspice_seconds"] = r.ngspice_seconds;
   if (r.step_halving_change) j["step_halving_change"] = *r.step_halving_change;

@@ -7,6 +7,7 @@
 
 #include "circuit/circuit.h"
 #include "circuit/quality.h"
+#include "common/enum_table.h"
 #include "model/gear_model.h"
 #include "scaling/scaled_program.h"
 #include "scene/scene_inputs.h"
@@ -16,6 +17,18 @@
 #include "verify/tube.h"
 
 namespace gearpatch::verify {
+
+const char* to_string(DeckScaling source) {
+  struct Row {
+    DeckScaling key;
+    const char* name;
+  };
+  static constexpr Row rows[] = {{DeckScaling::generated, "generated"},
+                                 {DeckScaling::header, "header"},
+                                 {DeckScaling::options, "options"},
+                                 {DeckScaling::measured, "measured"}};
+  return row_of(rows, source).name;
+}
 
 double default_tolerance(circuit::Level level) {
   return level == circuit::Level::ideal ? ideal_level_tolerance : hardware_level_tolerance;
@@ -196,7 +209,7 @@ VerifyResult verify_scene(const Scene& scene, const VerifyOptions& options, spic
   r.autoscaled = circuit.autoscaled;
   r.scaling = circuit.scaling;
   if (options.deck_header) check_deck_header(*options.deck_header, circuit);
-  if (options.deck_text) r.deck_scaling = options.deck_header ? "header" : "options";
+  if (options.deck_text) r.deck_scaling = options.deck_header ? DeckScaling::header : DeckScaling::options;
   // The largest step from the scene's own time scales (the contact period),
   // never coarser than the preset's.
   const circuit::TransientControl control = circuit::scene_control(options.transient, input.gear, scene.duration);

@@ -51,6 +51,13 @@ struct Check {
   bool passed = true;
 };
 
+/// Where the circuit that was judged came from, and so whose scaling read its
+/// signals back: verify's own deck, a --deck's gearpatch header, a --deck
+/// without one (level and scaling as the options say, unchecked), or an
+/// oscilloscope recording (the sheet's scales).
+enum class DeckScaling { generated, header, options, measured };
+const char* to_string(DeckScaling source);
+
 /// The verdict and every number behind it.
 struct VerifyResult {
   std::string scene;
@@ -71,10 +78,8 @@ struct VerifyResult {
   double ngspice_seconds = 0;  ///< both runs, if there was a retry
   /// Set when ngspice aborted the generated deck and the one retry ran it.
   std::optional<spice::Retry> retry;
-  /// Whose scaling the deck was read back with: "generated" (verify's own
-  /// deck), "header" (a --deck's gearpatch header) or "options" (a --deck
-  /// without one: level and scaling as the options say, unchecked).
-  std::string deck_scaling = "generated";
+  /// Whose scaling the deck was read back with (JSON `deck_scaling`).
+  DeckScaling deck_scaling = DeckScaling::generated;
   bool autoscaled = false;  ///< maxima from the simulated peaks (--autoscale)
   std::string transient;    ///< the deck's transient settings in a few words (circuit::describe)
   /// With check_step: the largest change of a signal, as a fraction of its
