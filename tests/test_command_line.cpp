@@ -131,7 +131,7 @@ TEST_CASE("gearpatch --version prints the project's version", "[common][cli]") {
 }
 
 TEST_CASE("every --help ends with examples that run as written and make the files they name",
-          "[common][cli][ngspice]") {
+          "[common][cli][ngspice][slow]") {
   WorkDir dir;
   std::string help;
   REQUIRE(dir.run("--help", help) == 0);
