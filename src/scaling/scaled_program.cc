@@ -11,6 +11,7 @@
 #include "scaling/time_scale.h"
 #include "scaling/scaling_input.h"
 #include "scaling/scaled_program_parts.h"
+#include "scaling/scaling_problem.h"
 
 namespace gearpatch {
 
@@ -91,8 +92,10 @@ std::string culprit(const Coefficient& c) {
   if (c.kind == CoefficientKind::initial)
     return c.name == Setting::alpha6 ? "initial.speed_primary"
          : c.name == Setting::alpha7 ? "initial.speed_secondary" : "initial.twist";
-  if (c.name == Setting::alpha11) return "gear.backlash";
-  if (c.name == Setting::alpha8 || c.name == Setting::alpha9) return "maxima.relative_speed";
+  // The coefficients of a speed ratio or of the play have a key of their own;
+  // every torque coefficient is beyond its weight because M0m is small.
+  if (c.name == Setting::alpha8 || c.name == Setting::alpha9 || c.name == Setting::alpha11)
+    return coefficient_key(c.name);
   return "maxima.torque";
 }
 

@@ -431,9 +431,7 @@ std::optional<ScalingSolution> solve_scaling(const ScalingProblem& pr, const std
   return s;
 }
 
-namespace {
-
-/// The scene key behind a coefficient, for file:line and the advice.
+// The one table of the scene keys (scaling_problem.h).
 std::string coefficient_key(Setting s) {
   switch (s) {
     case Setting::alpha1: return "friction.bearing_primary";
@@ -443,8 +441,8 @@ std::string coefficient_key(Setting s) {
     case Setting::alpha5: return "friction.bearing_secondary";
     case Setting::alpha_tooth: return "friction.mesh_efficiency";
     case Setting::alpha_load: return "drive.load_torque";
-    case Setting::alpha8: return "maxima.speed_primary";
-    case Setting::alpha9: return "maxima.speed_secondary";
+    case Setting::alpha8:  // φ̇pm/Δφ̇m, φ̇sm/Δφ̇m: a still scene has no relative speed to scale by
+    case Setting::alpha9: return "maxima.relative_speed";
     case Setting::alpha10: return "maxima.relative_speed";
     case Setting::alpha11: return "gear.backlash";
     case Setting::alpha13: return "gear.stiffness";
@@ -456,6 +454,8 @@ std::string coefficient_key(Setting s) {
     default: return "";
   }
 }
+
+namespace {
 
 using Kind = ConstraintGroup::Kind;
 

@@ -116,6 +116,10 @@ struct Conflict {
   std::string sentence;
 };
 
+/// The scene key behind a coefficient, for file:line and the advice; empty
+/// where no one key sets it. The one table of them.
+std::string coefficient_key(Setting s);
+
 /// Section 6's estimate as true bounds, what the problem starts from: speeds
 /// not rounded, and M0m = c·Δφ'm + d·Δφ̇'m (a preloaded scene whose flanks
 /// close at t = 0 has spring and damper at once; the paper takes the larger).
