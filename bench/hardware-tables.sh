@@ -46,7 +46,7 @@ monte-carlo)
   for scene in $scenes; do
     "$gearpatch" monte-carlo "scenes/$scene.ini" --machine the-analog-thing -n "$draws" >"$tmp/$scene.mc" 2>&1 || true
     awk -v s="$scene" -v n="$draws" '
-      /^Monte Carlo:/ { for (i = 1; i <= NF; ++i) if ($i == "yield") y = $(i + 1) }
+      /^yield / { y = $2 }
       $1 == "worst" { printf "| %-7s | %5d | %11s | %11s | %11s | %7s |\n", s, n, $2, $3, $4, y }' "$tmp/$scene.mc"
   done
   ;;
