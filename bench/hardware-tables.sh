@@ -3,6 +3,7 @@
 #   bench/hardware-tables.sh perfect          # THE ANALOG THING, perfect components
 #   bench/hardware-tables.sh monte-carlo [N [SCENE...]]  # THE ANALOG THING, N drawn machines (default 200)
 #   bench/hardware-tables.sh classic          # the classic machine (trimmed offsets)
+#   bench/hardware-tables.sh MACHINE          # any other profile with its own offsets (model-1)
 # Each example scene is verified at the hardware level at 2 % of full scale.
 # perfect and classic: one verify per scene; worst = the largest signal error
 # (amplitude after the best shift within the tube), impacts reference/circuit,
@@ -33,8 +34,8 @@ verify_row() {  # scene machine -> one table row
 }
 
 case $mode in
-perfect | classic)
-  machine=$([ "$mode" = perfect ] && echo bench/the-analog-thing-perfect.ini || echo classic)
+perfect | classic | the-analog-thing | model-1 | generic)
+  machine=$([ "$mode" = perfect ] && echo bench/the-analog-thing-perfect.ini || echo "$mode")
   echo "| scene   | worst signal %   | impacts | verdict | wall s |"
   echo "|---------|------------------|---------|---------|--------|"
   for scene in $scenes; do verify_row "$scene" "$machine"; done
@@ -45,12 +46,12 @@ monte-carlo)
   for scene in $scenes; do
     "$gearpatch" monte-carlo "scenes/$scene.ini" --machine the-analog-thing -n "$draws" >"$tmp/$scene.mc" 2>&1 || true
     awk -v s="$scene" -v n="$draws" '
-      /^Monte Carlo:/ { for (i = 1; i <= NF; ++i) if ($i == "yield") y = $(i + 1) }
+      /^yield / { y = $2 }
       $1 == "worst" { printf "| %-7s | %5d | %11s | %11s | %11s | %7s |\n", s, n, $2, $3, $4, y }' "$tmp/$scene.mc"
   done
   ;;
 *)
-  echo "usage: bench/hardware-tables.sh perfect|monte-carlo [N]|classic" >&2
+  echo "usage: bench/hardware-tables.sh perfect|monte-carlo [N]|classic|the-analog-thing|model-1|generic" >&2
   exit 2
   ;;
 esac

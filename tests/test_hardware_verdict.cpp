@@ -31,9 +31,16 @@ double worst_measured(const nlohmann::json& j) {
 TEST_CASE("a hardware run beyond the tolerance but within its predicted budget fails, the budget printed beside it",
           "[component_spread][slow]") {
   testing::TempFolder dir("verdict-budget");
+  // THE ANALOG THING with the spring unswitched: bild6c's X' stage offset acts in free flight
+  std::string profile = read_file(testing::source_path("machines/the-analog-thing.ini"));
+  const auto key = profile.find("switched_spring = true");
+  REQUIRE(key != std::string::npos);
+  profile.replace(key, 22, "switched_spring = false");
+  write_file_atomically(dir / "unswitched.ini", profile);
   std::string output;
   const int status = testing::run_command(kBinary + " verify " + testing::scene_path("bild6c") +
-                                              " --level hardware --machine the-analog-thing --budget -j 2 --json " +
+                                              " --level hardware --machine " + dir / "unswitched.ini" +
+                                              " --budget -j 2 --json " +
                                               dir / "v.json" + " --out " + dir / "v.txt",
                                           output);
   const nlohmann::json j = testing::read_json(dir / "v.json");

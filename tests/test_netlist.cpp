@@ -137,6 +137,45 @@ TEST_CASE("zero backlash has no dead zone", "[netlist]") {
   CHECK(count(g.deck, "left out: block 5 dead zone: no backlash") == 1);
 }
 
+TEST_CASE("the spring enters the torque summer through the contact switches exactly where the profile asks",
+          "[netlist]") {
+  // The switches of the spring's inputs (alpha13) into the torque summer; "" for an unswitched input.
+  const auto spring_switches = [](const Circuit& c) {
+    std::multiset<std::string> switches;
+    for (const Amplifier& a : c.amplifiers)
+      if (a.name == "sum_m0")
+        for (const AmplifierInput& in : a.inputs)
+          if (in.potentiometer == Setting::alpha13) switches.insert(in.switched_by);
+    return switches;
+  };
+  const auto on = [](const Scene& scene, Level level) {
+    ScalingOptions o;
+    o.check_peaks = false;
+    o.comparator_offset = comparator_offset(level);
+    return build_circuit(scale_program(scene, o), level);
+  };
+  const auto example = [](const std::string& name, const std::string& machine) {
+    return load_scene(testing::source_path("scenes/" + name + ".ini"), machine);
+  };
+  const std::multiset<std::string> unswitched{""};
+  // bild6c has no damping: the spring's own contact comparators, on the damping's threshold δ1
+  const Circuit that = on(example("bild6c", "the-analog-thing"), Level::hardware);
+  CHECK(spring_switches(that) == std::multiset<std::string>{"contact_n", "contact_p"});
+  CHECK(render_netlist(that, {}).find("Xcmp_contact_p x contact_p") != std::string::npos);
+  // bild5b has damping: the spring stays unswitched beside the damping's switches
+  CHECK(spring_switches(on(example("bild5b", "the-analog-thing"), Level::hardware)) == unswitched);
+  CHECK(spring_switches(on(example("bild6c", "the-analog-thing"), Level::ideal)) == unswitched);
+  for (const std::string machine : {"model-1", "classic", "generic"})
+    CHECK(spring_switches(on(example("bild6c", machine), Level::hardware)) == unswitched);
+  // no backlash, no free flight: the spring unswitched and no contact comparators
+  const Scene rigid = parse_scene(
+      testing::gear_scene("restitution = 0.5", "[initial]\nspeed_primary = 1\n[machine]\nprofile = the-analog-thing\n"),
+      "nb.ini");
+  const Circuit c = on(rigid, Level::hardware);
+  CHECK(spring_switches(c) == unswitched);
+  CHECK(!c.uses(BlockKind::comparator));
+}
+
 TEST_CASE("each setting is one .param used by the elements it sets", "[netlist]") {
   for (Level level : {Level::ideal, Level::hardware}) {
     const Generated g = generate("bild6c", level);

@@ -37,6 +37,14 @@ struct ExampleRecording {
   verify::MeasuredVerify verdict;
 };
 
+/// The one example deck that fails at 2 %: bild6c on model-1, whose untrimmed
+/// offsets move φ̇s by 8 % (`gearpatch verify scenes/bild6c.ini --machine
+/// model-1 --level hardware`); every other deck passes, so a deck that
+/// regresses fails the test, and so does this one once it passes.
+bool fails_at_two_percent(const std::string& scene, const std::string& machine) {
+  return scene == "bild6c" && machine == "model-1";
+}
+
 /// The largest signal error of a verdict, % of full scale, and the signal.
 std::string worst_signal(const verify::VerifyResult& r) {
   const auto worst = std::max_element(r.comparison.signals.begin(), r.comparison.signals.end(),
@@ -121,6 +129,7 @@ TEST_CASE("a recording of each example on each machine is judged as the example'
     CHECK(peak_loss(v) < 0.1 * 0.02);  // the smoothing takes less than a tenth of the tolerance off a peak
     CHECK(v.measured.start == Approx(e.setup.run_start).margin(0.005 * run.result.beta * run.result.duration));
     check_error_within_recording(run, v);
+    CHECK(run.result.passed != fails_at_two_percent(e.scene, e.machine));
     if (!run.result.passed) {  // the recording is judged like the deck: it fails as the deck's run does
       CHECK(!v.result.passed);
       continue;

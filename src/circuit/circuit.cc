@@ -149,7 +149,9 @@ class Builder {
       c_.weights[Setting::alpha_stage] = smallest;
     }
     if (program_.dead_zone) c_.parameters.emplace_back(Setting::a, *program_.dead_zone);
-    if (has(Setting::alpha14)) c_.parameters.emplace_back(Setting::delta1, contact_threshold(program_.delta1));
+    if (has(Setting::alpha14) || spring_switched())  // without damping the switched spring's comparators take δ1
+      c_.parameters.emplace_back(Setting::delta1, contact_threshold(has(Setting::alpha14) ? program_.delta1
+                                                                                         : comparator_offset(level_)));
     if (has(Setting::alpha_lock)) c_.parameters.emplace_back(Setting::delta2, contact_threshold(program_.delta2));
     // Initial values (Table 1: alpha6, alpha7, alpha12) in machine units, signed.
     const Maxima& m = program_.maxima;
@@ -287,7 +289,8 @@ class Builder {
   }
 
   void add_transmitted_torque() {  // (6.8), (6.10)
-    std::vector<AmplifierInput> in{through("xp", Setting::alpha13)};
+    std::vector<AmplifierInput> in;
+    if (!spring_switched()) in.push_back(through("xp", Setting::alpha13));
     if (has(Setting::alpha14)) {
       const Section damping(feature_, "damping");
       inverter("inv_dw", "dw_n", "dw", "dw = +dphi'/dphi'_m");
@@ -303,6 +306,7 @@ class Builder {
     } else {
       omit("damping path alpha14 and blocks 7/9: d = 0 (k = 1)");
     }
+    if (spring_switched()) add_switched_spring(in);
     const bool capped = program_.capped_contact && program_.dead_zone && has(Setting::alpha14);
     amplifier("sum_m0", false, capped ? "kv_n" : "m_n", in,
               capped ? "(6.8) spring and damper: kv_n = -(s + q), s = c*dphi', q = d*dphi'' in contact"
@@ -311,6 +315,33 @@ class Builder {
     mean("m_n", "−M0/M0m", "transmitted torque, inverted", "N·m", program_.maxima.torque);
     inverter("inv_m0", "m_n", "m", "m = +M0/M0m");
     mean("m", "+M0/M0m", "transmitted torque", "N·m", program_.maxima.torque);
+  }
+
+  /// Whether the spring c·X' enters the torque summer through the contact
+  /// comparators' switches: at the hardware level on a machine whose profile
+  /// asks for it (untrimmed offsets), where the scene has backlash (free
+  /// flight) and no damping. Through the play X' is zero but for the X'
+  /// stage's output offset, which unswitched acts as a torque all through
+  /// the free flight (measured on THE ANALOG THING with the profile's
+  /// offsets: bild6c 7.96 % unswitched, 0.82 % switched). Not beside the
+  /// damping's switches: four switched inputs into the torque summer abort
+  /// ngspice (timestep too small; THE ANALOG THING's bild5b with gp_int_p's
+  /// offset at +1.15 mV, model-1 on 8 of 30 random scenes of seed 3101).
+  bool spring_switched() const {
+    return level_ == Level::hardware && program_.machine.switched_spring && program_.dead_zone &&
+           !has(Setting::alpha14);
+  }
+
+  /// The switched spring's two inputs, one through each of two contact
+  /// comparators of its own, on the damping's threshold δ1 (bild6c on THE
+  /// ANALOG THING errs 0.81–0.83 % for δ1 from a + 2 mV to a + 2h + 2 mV).
+  void add_switched_spring(std::vector<AmplifierInput>& in) {
+    {
+      const Section backlash(feature_, "backlash");
+      contact_comparators("contact", "{delta1}", "δ1", "the spring's switch, (6.8) while the flanks touch");
+    }
+    in.push_back(through("xp", Setting::alpha13, "contact_p"));
+    in.push_back(through("xp", Setting::alpha13, "contact_n"));
   }
 
   /// The capped law (Modelica's ElastoBacklash) from half-wave diodes:

@@ -68,6 +68,10 @@ struct MachineProfile {
   double potentiometer_resolution = 1e-4; ///< the finest step a potentiometer is set to
   double comparator_hysteresis = 1e-3;    ///< MU, half-width of the hardware Schmitt trigger
   double switch_resistance = 35;          ///< ohms of a closed switch (hardware level; DG419 class)
+  /// The hardware circuit switches the spring c·Δφ' into the torque summer by
+  /// the contact comparators, as the damping is: on untrimmed amplifiers the
+  /// X' stage's output offset would act as a torque all through the free flight.
+  bool switched_spring = false;
   AmplifierModel amplifier;
   std::map<std::string, Realisation> realisations;  ///< nonlinear block → elements it takes
   std::vector<std::string> modes;         ///< IC, OP, HALT, REP …
