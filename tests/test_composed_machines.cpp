@@ -133,3 +133,38 @@ TEST_CASE("two components each moving a narrow pulse a little later compose to t
   // of both differences would dip to −1 at the pulse's top.
   CHECK(component_spread::composed_errors(m, {1, 1}).at(Signal::m0) == Approx(0).margin(0.02));
 }
+
+TEST_CASE("components that each bring about the same event compose to that event once; proportional ones still add",
+          "[component_spread]") {
+  // Each event component, measured at ±1 and ±2, moves the signal by 1 at
+  // both sizes: the same event, whatever its size (it saturates).
+  TraceModel m = flat_model(0);
+  m.shift = 0.1;
+  m.width[Signal::omega_p] = 0.01;
+  for (const char* name : {"a", "b"})
+    component_spread::add_component(m, name, {1, 2, -1, -2},
+                                    {trace(m, 1, constant), trace(m, 1, constant), trace(m, 1, constant), trace(m, 1, constant)});
+  // A proportional component, measured at ±1 and ±2: 0.1 per unit.
+  component_spread::add_component(m, "p", {1, 2, -1, -2},
+                                  {trace(m, 0.1, constant), trace(m, 0.2, constant), trace(m, -0.1, constant), trace(m, -0.2, constant)});
+  // An event past a threshold: nothing at 1, 0.8 at 2.
+  component_spread::add_component(m, "t", {1, 2}, {trace(m, 0.001, constant), trace(m, 0.8, constant)});
+  REQUIRE(m.components.size() == 4);
+  CHECK(m.components[0].event);
+  CHECK(m.components[1].event);
+  CHECK_FALSE(m.components[2].event);
+  CHECK(m.components[3].event);
+  const auto error = [&](std::vector<double> values) { return component_spread::composed_errors(m, values).at(Signal::omega_p); };
+  CHECK(error({1, 0, 0, 0}) == Approx(1));
+  CHECK(error({1, 1, 0, 0}) == Approx(1));          // one event, not two
+  CHECK(error({2, -1, 0, 0}) == Approx(1));         // also with either sign
+  CHECK(error({1, 1, 2, 0}) == Approx(1.2));        // the proportional one adds to it
+  CHECK(error({1, 0, 0, 2}) == Approx(1));          // the threshold's event is the same event, counted once
+  CHECK(error({0, 0, 0, 2}) == Approx(0.8));
+  // Two proportional components add as before.
+  TraceModel q = flat_model(0);
+  for (const char* name : {"p", "q"})
+    component_spread::add_component(q, name, {1, 2}, {trace(q, 0.1, constant), trace(q, 0.2, constant)});
+  CHECK_FALSE(q.components[0].event);
+  CHECK(component_spread::composed_errors(q, {2, 2}).at(Signal::omega_p) == Approx(0.4));
+}

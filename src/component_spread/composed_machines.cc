@@ -71,11 +71,16 @@ std::pair<double, double> shift_and_excess(const Polyline& p, double x, double v
 }
 
 /// Where a component's value lies among its measured values: the segment's
-/// two departures and their weights (beyond the ends, the last segment continued).
+/// two departures and their weights (beyond the ends, the last segment
+/// continued), and whether the component's departure is an event.
 struct Blend {
   const Departure* below = nullptr;
   const Departure* above = nullptr;
   double weight_below = 0, weight_above = 0;
+  bool event = false;
+
+  double shift(std::size_t i) const { return weight_below * below->shift[i] + weight_above * above->shift[i]; }
+  double excess(std::size_t i) const { return weight_below * below->excess[i] + weight_above * above->excess[i]; }
 };
 
 Blend blend(const ComponentResponse& c, Signal signal, double x) {
@@ -84,8 +89,73 @@ Blend blend(const ComponentResponse& c, Signal signal, double x) {
   std::size_t j = std::upper_bound(v.begin(), v.end(), x) - v.begin();
   j = std::clamp<std::size_t>(j, 1, v.size() - 1);
   const double w = (x - v[j - 1]) / (v[j] - v[j - 1]);
-  return {&c.departure[j - 1].at(signal), &c.departure[j].at(signal), 1 - w, w};
+  return {&c.departure[j - 1].at(signal), &c.departure[j].at(signal), 1 - w, w, c.event};
 }
+
+/// The largest distance of a departure from the perfect trace in the tube's
+/// geometry: its shift in units of the time window, its excess in units of the value width.
+double reach(const Departure& d, double window, double width) {
+  double most = 0;
+  for (std::size_t i = 0; i < d.shift.size(); ++i) most = std::max(most, std::hypot(d.shift[i] / window, d.excess[i] / width));
+  return most;
+}
+
+/// How a component's departure of `signal` grows from the smaller to the
+/// larger measured size of each sign (their reaches summed over the signs),
+/// and the ratio of the sizes; {0, 0} when no sign was measured at two sizes.
+std::pair<double, double> growth(const ComponentResponse& c, Signal signal, double window, double width) {
+  double small = 0, large = 0, ratio = 0;
+  for (const int sign : {-1, 1}) {
+    std::size_t a = c.values.size(), b = a;  // the smallest and the largest measured size of this sign
+    for (std::size_t k = 0; k < c.values.size(); ++k) {
+      if (c.values[k] * sign <= 0) continue;
+      if (a == c.values.size() || std::abs(c.values[k]) < std::abs(c.values[a])) a = k;
+      if (b == c.values.size() || std::abs(c.values[k]) > std::abs(c.values[b])) b = k;
+    }
+    if (a == c.values.size() || std::abs(c.values[b]) < 1.05 * std::abs(c.values[a])) continue;
+    small += reach(c.departure[a].at(signal), window, width);
+    large += reach(c.departure[b].at(signal), window, width);
+    ratio = std::abs(c.values[b] / c.values[a]);
+  }
+  if (ratio == 0 || small == 0) return {0, 0};
+  return {large / small, ratio};
+}
+
+/// Whether a component's departure is an event rather than a change in
+/// proportion to its value: in some signal, from its smaller to its larger
+/// measured size, the departure grows by less than √ratio (the same event
+/// at both sizes: it saturates) or by more than ratio^1.5 (an event appears
+/// past a threshold between them); a proportional change grows by the ratio.
+bool is_event(const ComponentResponse& c, const TraceModel& m) {
+  for (const auto& [signal, trace] : m.perfect) {
+    const auto width = m.width.find(signal);
+    const auto [grows, ratio] = growth(c, signal, m.shift, width == m.width.end() ? m.full_scale.at(signal) : width->second);
+    if (ratio > 0 && (grows < std::sqrt(ratio) || grows > std::pow(ratio, 1.5))) return true;
+  }
+  return false;
+}
+
+/// One signal's departure at one point of a composed machine: the
+/// proportional components' departures add; the events count once (several
+/// offsets that each alone change the motion's course change it once, not
+/// several times over): per direction the farthest of their shifts and of
+/// their excesses.
+struct PointDeparture {
+  double shift = 0, excess = 0;
+  double shift_up = 0, shift_down = 0, excess_up = 0, excess_down = 0;
+
+  void add(const Blend& b, std::size_t i) {
+    const double s = b.shift(i), e = b.excess(i);
+    if (!b.event) {
+      shift += s, excess += e;
+      return;
+    }
+    shift_up = std::max(shift_up, s), shift_down = std::min(shift_down, s);
+    excess_up = std::max(excess_up, e), excess_down = std::min(excess_down, e);
+  }
+  double total_shift() const { return shift + shift_up + shift_down; }
+  double total_excess() const { return excess + excess_up + excess_down; }
+};
 
 }  // namespace
 
@@ -143,12 +213,13 @@ void add_component(TraceModel& m, const std::string& component, std::vector<doub
   std::vector<std::size_t> order(values.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
-  ComponentResponse c{component, {}, {}};
+  ComponentResponse c{component, {}, {}, false};
   for (std::size_t k : order) {
     if (!c.values.empty() && values[k] == c.values.back()) continue;
     c.values.push_back(values[k]);
     c.departure.push_back(std::move(measured[k]));
   }
+  c.event = is_event(c, m);
   m.components.push_back(std::move(c));
 }
 
@@ -165,12 +236,10 @@ std::map<Signal, double> composed_errors(const TraceModel& m, const std::vector<
     const Polyline p{m.t, perfect};
     double worst = 0;
     for (std::size_t i = 0; i < m.t.size(); ++i) {
-      double shift = 0, excess = 0;
-      for (const Blend& b : blends) {
-        if (!b.below) continue;
-        shift += b.weight_below * b.below->shift[i] + b.weight_above * b.above->shift[i];
-        excess += b.weight_below * b.below->excess[i] + b.weight_above * b.above->excess[i];
-      }
+      PointDeparture d;
+      for (const Blend& b : blends)
+        if (b.below) d.add(b, i);
+      const double shift = d.total_shift(), excess = d.total_excess();
       const double y = (shift == 0 ? perfect[i] : p.at(m.t[i] - shift, i)) + excess;
       worst = std::max({worst, low[i] - y, y - high[i]});
     }

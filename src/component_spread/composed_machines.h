@@ -34,6 +34,9 @@ struct ComponentResponse {
   std::string component;              ///< as the budget's shares name it
   std::vector<double> values;         ///< ascending, 0 among them
   std::vector<Departures> departure;  ///< per value
+  /// Its departure is an event (it saturates, or appears past a threshold,
+  /// between two measured sizes), not a change in proportion to its value.
+  bool event = false;
 };
 
 /// What virtual machines are composed from without running them: the
@@ -63,9 +66,11 @@ void add_component(TraceModel& model, const std::string& component, std::vector<
 
 /// Each signal's amplitude error (verify's tube measure, fraction of full
 /// scale) of the machine whose components take `values` (one per
-/// model.components, in order): the perfect trace shifted by the sum of the
-/// components' interpolated shifts plus the sum of their excesses, its
-/// largest distance outside the reference's range.
+/// model.components, in order): the perfect trace shifted by the
+/// components' interpolated shifts plus their excesses, its largest distance
+/// outside the reference's range. Proportional components' shifts and
+/// excesses add; the events' count once: at each point, per direction, the
+/// farthest of them.
 std::map<Signal, double> composed_errors(const TraceModel& model, const std::vector<double>& values);
 
 /// The p90 over many composed machines: per signal, and of each machine's worst signal.

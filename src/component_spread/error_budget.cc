@@ -406,7 +406,7 @@ nlohmann::json to_json(const ErrorBudget& b) {
   for (const ComponentShare& s : b.shares) shares.push_back({{"component", s.component}, {"error", by_signal(s.error)}, {"moved", by_signal(s.moved)}});
   return {{"scene", b.scene},
           {"machine", b.machine},
-          {"method", "p90 over machines drawn as the Monte Carlo draws them (seed 1), each composed as the perfect deck's traces shifted by the sum of every tolerance's time shift of them plus the sum of what each moves beyond that shift, measured one at a time at its RMS size (both signs; the heaviest also at the largest size) and interpolated at the drawn value, judged in verify's tube; a share is how far the component alone at its RMS size moves the signal against the perfect deck's (verify's tube, best time shift)"},
+          {"method", "p90 over machines drawn as the Monte Carlo draws them (seed 1), each composed as the perfect deck's traces shifted by every tolerance's time shift of them plus what each moves beyond that shift, measured one at a time at its RMS size (both signs; the heaviest also at the largest size) and interpolated at the drawn value, proportional tolerances added and those whose departure is an event (out of proportion between the two sizes) counted once (per point and direction the farthest), judged in verify's tube; a share is how far the component alone at its RMS size moves the signal against the perfect deck's (verify's tube, best time shift)"},
           {"offset_rms_volts", b.offset_rms_volts},
           {"nominal", by_signal(b.nominal)},
           {"shares", shares},

@@ -26,8 +26,9 @@ struct ComponentShare {
 /// take random signs), gives how far it moves each signal's trace (its
 /// share); the components whose share matters are measured again at the
 /// profile's largest size. A machine's trace is the perfect one plus every
-/// component's deviation interpolated at its drawn value, judged in
-/// verify's tube. The dominant component is the one whose removal from
+/// component's deviation interpolated at its drawn value (an event that
+/// several components each bring about counted once), judged in verify's
+/// tube. The dominant component is the one whose removal from
 /// every machine lowers the worst signal's p90 most: what ablation confirms.
 struct ErrorBudget {
   std::string scene, machine;
