@@ -32,9 +32,9 @@ TEST_CASE("every example scene's deck on the-analog-thing errs within its predic
   REQUIRE(runs[0].result);
   // One deck is one machine: the budget's worst signal estimates the p90 of the
   // worst error and is checked against the Monte Carlo to 0.7…1.5
-  // (docs/hardware-level.md). Per signal the linear shares do not hold where
-  // one offset decides an event (bild6c's dphi: 5.4 % against 2.9 %), so the
-  // deck's worst error is held to the budget's worst.
+  // (docs/hardware-level.md). Per signal the shares do not hold where one
+  // offset decides an event, so the deck's worst error is held to the
+  // budget's worst.
   double worst = 0;
   for (const auto& [signal, error] : component_spread::signal_errors(*runs[0].result)) worst = std::max(worst, error);
   CAPTURE(worst, b.worst());
