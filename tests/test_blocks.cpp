@@ -644,6 +644,37 @@ TEST_CASE("switch: on/off transfer into a weight-10 input", "[blocks]") {
   }
 }
 
+TEST_CASE("a switched-off input is tied to ground or left open, as the profile's idle throw says", "[blocks]") {
+  // in = 0.5 V; ctrl on (+10 V) until 1 ms, off (-10 V) after; out loaded by
+  // a 100 kOhm input resistor returned to 1 V, which stands for a summing
+  // junction off ground by an op-amp's offset.
+  const bool grounded = GENERATE(true, false);
+  MachineProfile m;
+  m.idle_throw_grounded = grounded;
+  m.switch_resistance = 100;
+  const std::string bench =
+      "V1 in 0 0.5\n"
+      "Vc ctrl 0 PWL(0 10 1m 10 1.0001m -10)\n"
+      "Vsj sj 0 1\n"
+      "X1 in o ctrl gp_switched_input\n"
+      "RL o sj 100k\n"
+      ".tran 1u 2m 0 2u\n";
+  const std::string deck = make_deck(Level::hardware, m, {"switch"}, "", bench);
+  INFO(deck);
+  const auto v = simulate(deck);
+  const double on = at_time(v.at("time"), v.at("v(o)"), 0.5e-3), off = at_time(v.at("time"), v.at("v(o)"), 1.5e-3);
+  report(fmt::format("switched input, idle throw {}: on {:.6g} V, off {:.6g} V", grounded ? "ground" : "open", on, off));
+  // On: the divider of R_on = 100 Ohm and 100 kOhm between 0.5 V and 1 V.
+  CHECK(on == Approx(0.5 + 0.5 * 100 / 100100.0).epsilon(1e-6));
+  // Off: grounded, the ground throw's 100 Ohm against 100 kOhm from 1 V (the
+  // junction's offset drives a current); open, R_off 1e11 Ohm leaves out at
+  // the junction's 1 V (no current).
+  if (grounded)
+    CHECK(off == Approx(100 / 100100.0).epsilon(1e-3));
+  else
+    CHECK(off == Approx(1.0).margin(1e-5));
+}
+
 TEST_CASE("comparator driving a switch (blocks 7/9): the signal passes above the offset", "[blocks]") {
   const Level level = generate_level();
   const bool hw = level == Level::hardware;

@@ -84,8 +84,10 @@ std::set<DeckWire> deck_wires(const std::string& deck, double input_resistance) 
     else if (w[0] == ".subckt") subckt = w[1];
     else if (std::regex_search(line, m, rin)) weights[subckt][std::stoi(m[1])] = static_cast<int>(std::lround(input_resistance / std::stod(m[2])));
     else if (w[0].rfind("Xpot_", 0) == 0) pots[w[2]] = {w[1], w.back().substr(9, w.back().size() - 10)};
-    else if (w[0].rfind("Xsw_", 0) == 0) switches[w[2]] = {w[1], w[3]};
-    else if (w[0].rfind("Xlatch_", 0) == 0) latches[w[2]] = {w[1], w[3], w[4]};
+    else if (w[0].rfind("Xsw_", 0) == 0) {
+      switches[w[2]] = {w[1], w[3]};
+      if (w.back() == "gp_latched_input") latches[w[2]] = {w[1], w[4], w[5]};
+    }
     else if (w[0][0] == 'X' && w.back().rfind("gp_", 0) == 0 && weights.count(w.back())) amplifiers.push_back(w);
   }
   std::set<DeckWire> wires;

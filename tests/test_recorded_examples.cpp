@@ -37,12 +37,14 @@ struct ExampleRecording {
   verify::MeasuredVerify verdict;
 };
 
-/// The one example deck that fails at 2 %: bild6c on model-1, whose untrimmed
-/// offsets move φ̇s by 8 % (`gearpatch verify scenes/bild6c.ini --machine
-/// model-1 --level hardware`); every other deck passes, so a deck that
-/// regresses fails the test, and so does this one once it passes.
+/// The example decks that fail at 2 %: bild6c on the two machines with
+/// untrimmed offsets, whose switched-off inputs stay tied to ground and so
+/// keep the φ̇s integrator's offset gain high through the free flights
+/// (`gearpatch verify scenes/bild6c.ini --machine model-1 --level hardware`);
+/// every other deck passes, so a deck that regresses fails the test, and so
+/// do these once they pass.
 bool fails_at_two_percent(const std::string& scene, const std::string& machine) {
-  return scene == "bild6c" && machine == "model-1";
+  return scene == "bild6c" && (machine == "model-1" || machine == "the-analog-thing");
 }
 
 /// The largest signal error of a verdict, % of full scale, and the signal.

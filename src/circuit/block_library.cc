@@ -178,6 +178,8 @@ void diode_and_switch_context(const MachineProfile& m, double vsat, data& ctx) {
   ctx.set("hsw_roff", num(F::switch_roff));
   ctx.set("hsw_vt", num(F::switch_vt));
   ctx.set("hsw_vh", num(F::switch_vh));
+  ctx.set("hsw_complement", num(2 * F::switch_vt));  // the ground throw's control: on as the signal's is off
+  ctx.set("idle_grounded", m.idle_throw_grounded);
   ctx.set("hsw_tau", num(F::switch_tau));
   ctx.set("hlatch_vt", num(0.45 * vsat));  // on the triggers' +-vsat
   ctx.set("hlatch_vh", num(vsat));

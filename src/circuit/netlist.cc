@@ -88,9 +88,10 @@ std::string amplifier_instances(const Amplifier& a) {
     }
     if (!in.switched_by.empty()) {
       const std::string after = node + "_sw";
-      text += fmt::format("Xsw_{} {} {} {} gp_switch\n", node, node, after, in.switched_by);
-      if (!in.released_by.empty())
-        text += fmt::format("Xlatch_{} {} {} {} {} gp_latch\n", node, node, after,
+      if (in.released_by.empty())
+        text += fmt::format("Xsw_{} {} {} {} gp_switched_input\n", node, node, after, in.switched_by);
+      else
+        text += fmt::format("Xsw_{} {} {} {} {} {} gp_latched_input\n", node, node, after, in.switched_by,
                             in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by);
       node = after;
     }

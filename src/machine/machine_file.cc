@@ -42,6 +42,7 @@ std::map<std::string, std::string> profile_keys() {
       {"potentiometer.resolution", "the finest setting step"},
       {"comparator.hysteresis", "MU on the comparator's summed inputs"},
       {"comparator.switch_resistance", "ohms of a closed switch"},
+      {"comparator.idle_throw", "ground or open: what a switched input sees while its switch is off"},
       {"circuit.switched_spring", "true: the spring enters the torque summer only while the flanks touch"},
       {"amplifier.model", "the amplifier's name"},
       {"amplifier.offset", "typical input offset, V"},
@@ -251,6 +252,11 @@ void read_elements(const ProfileReader& r, MachineProfile& m) {
   m.potentiometer_resolution = r.number("potentiometer.resolution", m.potentiometer_resolution, 1e-7, 0.1);
   m.comparator_hysteresis = r.number("comparator.hysteresis", m.comparator_hysteresis, 1e-6, 0.5);
   m.switch_resistance = r.number("comparator.switch_resistance", m.switch_resistance, 1e-3, 1e6);
+  if (r.has("comparator.idle_throw")) {
+    const std::string throw_to = r.raw("comparator.idle_throw");
+    if (throw_to != "ground" && throw_to != "open") r.fail("comparator.idle_throw", "must be ground or open");
+    m.idle_throw_grounded = throw_to == "ground";
+  }
   m.switched_spring = r.boolean("circuit.switched_spring", m.switched_spring);
 }
 

@@ -68,6 +68,11 @@ struct MachineProfile {
   double potentiometer_resolution = 1e-4; ///< the finest step a potentiometer is set to
   double comparator_hysteresis = 1e-3;    ///< MU, half-width of the hardware Schmitt trigger
   double switch_resistance = 35;          ///< ohms of a closed switch (hardware level; DG419 class)
+  /// A switched-off input sees the comparator's other throw patched to
+  /// ground (a buffered switch output must not float), so its input resistor
+  /// stays tied to 0 V; false: that throw is left unwired (a relay contact)
+  /// and the input disconnects.
+  bool idle_throw_grounded = true;
   /// The hardware circuit switches the spring c·Δφ' into the torque summer by
   /// the contact comparators, as the damping is: on untrimmed amplifiers the
   /// X' stage's output offset would act as a torque all through the free flight.

@@ -39,6 +39,12 @@ bool is_ground(const std::string& part) {
   return part == "GND" || (part.size() > 4 && part.compare(part.size() - 4, 4, ":GND") == 0);
 }
 
+/// A jack the sheet leaves unwired on purpose (a comparator's idle throw on a
+/// machine whose switched-off inputs disconnect).
+bool left_open(const Part& p, const std::string& jack) {
+  return std::find(p.unwired.begin(), p.unwired.end(), jack) != p.unwired.end();
+}
+
 bool is_amplifier(const Part& p) { return p.kind == "integrator" || p.kind == "summer" || p.kind == "inverter"; }
 
 /// The machine's comparator with its own switch: A + B > 0 routes >0 to OUT,
@@ -56,7 +62,9 @@ bool is_amplifier(const Part& p) { return p.kind == "integrator" || p.kind == "s
 /// 55 % at 1e-6 of the run, 0.018 % at 1e-4). A set shorter than the lag
 /// never closes the latch (random-25-017-self-locking's shallow catch: ω_s
 /// 9.2 % of full scale at 1e-4 of the run on every machine, a pass at 3e-5).
-std::string comparator_model(Level level, double unit, bool held, double lag) {
+/// `buffered`: OUT behind a follower (a throw patched to ground gives 0 V);
+/// else OUT is the switch's common contact (a relay: an unwired throw opens).
+std::string comparator_model(Level level, double unit, bool held, double lag, bool buffered) {
   const std::string name = held ? "gp_machine_comparator_held" : "gp_machine_comparator";
   const std::string sum = held ? "(time > 0 ? v(a) + v(b) : 1)" : "(v(a) + v(b))";
   if (level == Level::ideal)
@@ -68,17 +76,17 @@ std::string comparator_model(Level level, double unit, bool held, double lag) {
         name, format_number(1e-6 * unit), sum, held ? " holding its state, reset to >0 in IC mode" : "",
         held ? "o" : "out",
         held ? fmt::format("Rlag o l 1\nClag l 0 {}\nEbuf out 0 l 0 1\n", format_number(lag)) : "");
-  return fmt::format("* the machine's comparator{2}, hardware: Schmitt trigger on A + B, two switches, output follower\n"
+  return fmt::format("* the machine's comparator{2}, hardware: Schmitt trigger on A + B, two switches{5}\n"
                      ".subckt {0} a b gt lt out\n"
                      "Bsum s 0 V = {1}\n"
                      "Xc s ctrl gp_comparator params: offset=0\n"
                      "Einv nctrl 0 ctrl 0 -1\n"
-                     "Xs1 gt o ctrl gp_switch\n"
-                     "Xs2 lt o nctrl gp_switch\n"
-                     "Ro o 0 1e9\n"
-                     "Ebuf out 0 o 0 1\n"
+                     "Xs1 gt {3} ctrl gp_switch\n"
+                     "Xs2 lt {3} nctrl gp_switch\n"
+                     "{4}"
                      ".ends {0}\n",
-                     name, sum, held ? " holding its state, reset to >0 in IC mode" : "");
+                     name, sum, held ? " holding its state, reset to >0 in IC mode" : "", buffered ? "o" : "out",
+                     buffered ? "Ro o 0 1e9\nEbuf out 0 o 0 1\n" : "", buffered ? ", output follower" : "");
 }
 
 std::string diode_model(Level level) {
@@ -92,7 +100,9 @@ std::string diode_model(Level level) {
 /// The jacks joined into nodes by the wires, and the checks a person's panel makes.
 class Nets {
  public:
-  explicit Nets(const Wiring& w) : w_(w) {
+  /// `open_throws`: the jacks a part lists as unwired may stay so (the
+  /// machine's idle throw is open, comparator idle_throw = open).
+  Nets(const Wiring& w, bool open_throws) : w_(w), open_throws_(open_throws) {
     for (const Wire& wire : w.wires) {
       check_jack(wire, wire.from);
       check_jack(wire, wire.to);
@@ -148,7 +158,8 @@ class Nets {
                                 "machine 1", p.label, p.machine, p.machine));
     for (const Part& p : w_.parts) {
       for (const std::string& jack : required_jacks(p))
-        if (!wired({p.label, jack})) throw Error(fmt::format("{} {} is open: no wire ends there", p.label, jack));
+        if (!wired({p.label, jack}) && !(open_throws_ && left_open(p, jack)))
+          throw Error(fmt::format("{} {} is open: no wire ends there", p.label, jack));
       for (const auto& [jack, weight] : p.inputs)
         if (cables_.at({p.label, jack}) > 1)
           throw Error(fmt::format("{} {} takes {} cables; an input jack takes one", p.label, jack,
@@ -201,6 +212,7 @@ class Nets {
   }
 
   const Wiring& w_;
+  bool open_throws_ = false;
   std::map<Jack, Jack> parent_;
   std::map<Jack, int> cables_;
   std::map<Jack, std::string> names_;
@@ -257,9 +269,9 @@ std::string library(const Wiring& w, const Nets& nets, Level level, const Machin
   }
   std::string text = "\n" + circuit::render_models(level, m);
   for (const std::string& b : blocks) text += "\n" + circuit::render_block(level, b, m);
-  if (w.count("comparator")) text += "\n" + comparator_model(level, m.unit_volts, false, 0);
+  if (w.count("comparator")) text += "\n" + comparator_model(level, m.unit_volts, false, 0, m.idle_throw_grounded);
   if (std::any_of(w.parts.begin(), w.parts.end(), [&](const Part& p) { return holds(p, nets); }))
-    text += "\n" + comparator_model(level, m.unit_volts, true, 3e-5 * w.beta * w.duration);
+    text += "\n" + comparator_model(level, m.unit_volts, true, 3e-5 * w.beta * w.duration, m.idle_throw_grounded);
   if (w.count("diode")) text += "\n" + diode_model(level);
   return text;
 }
@@ -273,9 +285,12 @@ std::string instances(const Wiring& w, const Nets& nets, Level level, const Mach
     else if (p.kind == "potentiometer")
       text += fmt::format("X{} {} {} gp_potentiometer params: setting={}\n", n, at("in"), at("out"),
                           format_number(level == Level::hardware ? p.dial : p.setting));
-    else if (p.kind == "comparator")
+    else if (p.kind == "comparator") {
       text += fmt::format("X{} {} {} {} {} {} {}\n", n, at("A"), at("B"), at(">0"), at("<0"), at("OUT"),
                           holds(p, nets) ? "gp_machine_comparator_held" : "gp_machine_comparator");
+      for (const char* jack : {">0", "<0"})  // an unwired throw: only the leakage to ground fixes its node
+        if (!nets.wired({p.label, jack})) text += fmt::format("R{}_open {} 0 1e12\n", n + (jack[0] == '>' ? "_gt" : "_lt"), at(jack));
+    }
     else if (p.kind == "diode")
       text += level == Level::hardware ? fmt::format("D{} {} {} gp_d1n4148\n", n, at("anode"), at("cathode"))
                                        : fmt::format("X{} {} {} gp_ideal_diode\n", n, at("anode"), at("cathode"));
@@ -311,7 +326,7 @@ std::string sheet_deck(const Wiring& w, Level level, const circuit::TransientCon
   MachineProfile m = load_machine_profile(w.machine);
   m.integrator_constant = w.k0;
   m.unit_volts = w.unit_volts;
-  const Nets nets(w);
+  const Nets nets(w, !m.idle_throw_grounded);
   spice::DeckHeader h;
   h.level = std::string(circuit::level_name(level));
   h.scaling = w.scaling;

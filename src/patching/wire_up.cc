@@ -265,6 +265,8 @@ class Wirer {
 
   /// A comparator's switch routing `signal` (else ground) to OUT: the
   /// comparator's own for its first use, then a copy wired to the same inputs.
+  /// On a machine whose idle throw is open (a relay contact) ground is left
+  /// unwired, so that the switched-off input disconnects, as the deck models it.
   Jack switched(const std::string& ctrl, const Jack& signal, const Jack& otherwise = ground) {
     ComparatorUse& u = uses_.at(ctrl);
     std::string label = u.label;
@@ -275,8 +277,11 @@ class Wirer {
       wire(u.threshold, {label, "B"});
     }
     wire(signal, {label, ">0"});
-    wire(otherwise, {label, "<0"});
-    part(label).signal = fmt::format("{} while A + B > 0, else {}", carried(signal), carried(otherwise));
+    const bool open = otherwise == ground && !c_.machine.idle_throw_grounded;
+    if (open) part(label).unwired.push_back("<0");
+    else wire(otherwise, {label, "<0"});
+    part(label).signal =
+        fmt::format("{} while A + B > 0, else {}", carried(signal), open ? "open (<0 unwired)" : carried(otherwise));
     return {label, "OUT"};
   }
 

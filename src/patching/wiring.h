@@ -37,6 +37,9 @@ struct Part {
   std::string role;    ///< what it does in the program
   std::string node;    ///< the program's name of what its output carries ("wp"), empty inside a block
   std::string signal;  ///< that signal in the paper's variables, with its sign
+  /// Jacks left unwired on purpose: a comparator's idle throw on a machine
+  /// whose switched-off inputs disconnect (comparator idle_throw = open).
+  std::vector<std::string> unwired;
 };
 
 /// One cable a person plugs: from an output (or a reference, ground or a

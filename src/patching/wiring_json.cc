@@ -43,6 +43,7 @@ ordered_json part_json(const Part& p) {
   }
   if (!p.node.empty()) j["node"] = p.node;
   if (!p.signal.empty()) j["signal"] = p.signal;
+  if (!p.unwired.empty()) j["unwired"] = p.unwired;
   j["role"] = p.role;
   return j;
 }
@@ -63,6 +64,7 @@ Part part_from(const ordered_json& j) {
     for (const auto& pt : j.at("points")) p.points.emplace_back(pt.at(0).get<double>(), pt.at(1).get<double>());
   p.node = j.value("node", "");
   p.signal = j.value("signal", "");
+  if (j.contains("unwired")) p.unwired = j.at("unwired").get<std::vector<std::string>>();
   p.role = j.value("role", "");
   return p;
 }
