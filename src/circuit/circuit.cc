@@ -323,10 +323,10 @@ class Builder {
   /// flight) and no damping. Through the play X' is zero but for the X'
   /// stage's output offset, which unswitched acts as a torque all through
   /// the free flight (measured on THE ANALOG THING with the profile's
-  /// offsets: bild6c 7.96 % unswitched, 0.82 % switched). Not beside the
-  /// damping's switches: four switched inputs into the torque summer abort
-  /// ngspice (timestep too small; THE ANALOG THING's bild5b with gp_int_p's
-  /// offset at +1.15 mV, model-1 on 8 of 30 random scenes of seed 3101).
+  /// offsets: bild6c 31.8 % unswitched, 23.6 % switched, in Δφ). Not beside
+  /// the damping's switches: there the spring takes two more comparators,
+  /// and THE ANALOG THING has two (bild5b, bild5c would need two machines)
+  /// for 23 instead of 19 of 30 damped random scenes of seed 3101 passing.
   bool spring_switched() const {
     return level_ == Level::hardware && program_.machine.switched_spring && program_.dead_zone &&
            !has(Setting::alpha14);
