@@ -25,7 +25,7 @@ struct AmplifierInput {
   std::optional<Setting> potentiometer;
   int weight = 1;
   std::string switched_by;
-  /// With switched_by: a latch in parallel with the switch (gp_latch), closed
+  /// With switched_by: a latch in parallel with the switch (gp_latched_input), closed
   /// once switched_by is high and released_by low, opened once switched_by
   /// is low and released_by high, held in between.
   std::string released_by = {};
