@@ -267,8 +267,8 @@ TEST_CASE("verify --measured runs the example recording in scenes/traces as the 
 
 // Writes scenes/traces/driven.model-1.csv, the docs' example: a Rigol
 // DS1000Z recording of driven on the Model-1 (1200 points). Only when asked
-// (gearpatch_tests "[.write-example]"): the area entries leave hidden tests
-// out (~[.]), so that a test run leaves the source tree alone.
+// (gearpatch_tests "[.write-example]"): the area entries in CMakeLists.txt
+// leave hidden cases out, so that a test run leaves the source tree alone.
 TEST_CASE("write the example recording", "[.write-example][verify]") {
   const MachineRun& run = hardware_run("driven", "model-1");
   ScopeSetup setup;
