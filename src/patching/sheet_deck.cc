@@ -289,7 +289,8 @@ std::string instances(const Wiring& w, const Nets& nets, Level level, const Mach
       text += fmt::format("X{} {} {} {} {} {} {}\n", n, at("A"), at("B"), at(">0"), at("<0"), at("OUT"),
                           holds(p, nets) ? "gp_machine_comparator_held" : "gp_machine_comparator");
       for (const char* jack : {">0", "<0"})  // an unwired throw: only the leakage to ground fixes its node
-        if (!nets.wired({p.label, jack})) text += fmt::format("R{}_open {} 0 1e12\n", n + (jack[0] == '>' ? "_gt" : "_lt"), at(jack));
+        if (!nets.wired({p.label, jack}))
+          text += fmt::format("R{}_{}_open {} 0 1e12\n", n, jack[0] == '>' ? "gt" : "lt", at(jack));
     }
     else if (p.kind == "diode")
       text += level == Level::hardware ? fmt::format("D{} {} {} gp_d1n4148\n", n, at("anode"), at("cathode"))
