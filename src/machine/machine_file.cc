@@ -165,6 +165,14 @@ class ProfileReader {
     fail(key, "must be true or false");
   }
 
+  /// One of two words: true for `first`, false for `second`, `fallback` when absent.
+  bool either(const std::string& key, const std::string& first, const std::string& second, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (raw(key) == first) return true;
+    if (raw(key) == second) return false;
+    fail(key, "must be " + first + " or " + second);
+  }
+
  private:
   std::string source_;
   std::map<std::string, int> lines_;
@@ -252,11 +260,7 @@ void read_elements(const ProfileReader& r, MachineProfile& m) {
   m.potentiometer_resolution = r.number("potentiometer.resolution", m.potentiometer_resolution, 1e-7, 0.1);
   m.comparator_hysteresis = r.number("comparator.hysteresis", m.comparator_hysteresis, 1e-6, 0.5);
   m.switch_resistance = r.number("comparator.switch_resistance", m.switch_resistance, 1e-3, 1e6);
-  if (r.has("comparator.idle_throw")) {
-    const std::string throw_to = r.raw("comparator.idle_throw");
-    if (throw_to != "ground" && throw_to != "open") r.fail("comparator.idle_throw", "must be ground or open");
-    m.idle_throw_grounded = throw_to == "ground";
-  }
+  m.idle_throw_grounded = r.either("comparator.idle_throw", "ground", "open", m.idle_throw_grounded);
   m.switched_spring = r.boolean("circuit.switched_spring", m.switched_spring);
 }
 
@@ -265,11 +269,7 @@ void read_amplifier_and_run(const ProfileReader& r, MachineProfile& m) {
   if (r.has("amplifier.model")) a.name = r.raw("amplifier.model");
   a.offset_volts = r.number("amplifier.offset", a.offset_volts, 0, 1);
   a.offset_spread_volts = r.number("amplifier.offset_spread", a.offset_spread_volts, 0, 1);
-  if (r.has("amplifier.offset_sign")) {
-    if (r.raw("amplifier.offset_sign") != "random" && r.raw("amplifier.offset_sign") != "positive")
-      r.fail("amplifier.offset_sign", "must be random or positive");
-    a.random_sign = r.raw("amplifier.offset_sign") == "random";
-  }
+  a.random_sign = r.either("amplifier.offset_sign", "random", "positive", a.random_sign);
   a.gain = r.number("amplifier.gain", a.gain, 10, 1e12);
   a.bandwidth_hz = r.number("amplifier.bandwidth", a.bandwidth_hz, 1, 1e10);
   a.slew_volts_per_second = r.number("amplifier.slew", a.slew_volts_per_second, 1, 1e12);
