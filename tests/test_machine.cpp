@@ -46,18 +46,22 @@ TEST_CASE("the shipped machines are THE ANALOG THING, Model-1, a classic machine
   CHECK(that.chain == 2);
   CHECK(that.switched_spring);  // untrimmed offsets: the X' stage's would act in free flight
   CHECK(that.idle_throw_grounded);  // the switch feeds an output buffer, which must not float
+  CHECK(that.lock_catch_share == 3e-3);  // a shorter run in machine time: less offset drift
   // k0 = 1/(1 MΩ · (1 nF + 100 nF))
   CHECK(that.integrator_capacitance() == Approx(1.0101e-7).epsilon(1e-4));
   const MachineProfile model1 = load_machine_profile("model-1");
   CHECK(model1.integrator_constants == std::vector<double>{1, 10, 100, 1000});
   CHECK(!model1.potentiometers_buffered);
-  CHECK(!model1.switched_spring);
+  CHECK(model1.switched_spring);
   CHECK(model1.idle_throw_grounded);
+  CHECK(model1.lock_catch_share == 3e-3);
   const MachineProfile classic = load_machine_profile("classic");
   CHECK(classic.integrator_constant == 1);
   CHECK(!classic.switched_spring);
   CHECK(!load_machine_profile("generic").switched_spring);
   CHECK(!classic.idle_throw_grounded);  // a relay's other contact left unwired
+  CHECK(classic.lock_catch_share == 1e-3);
+  CHECK(load_machine_profile("generic").lock_catch_share == 1e-3);
   CHECK(!load_machine_profile("generic").idle_throw_grounded);
   CHECK(classic.amplifier.offset_volts < 1e-4);  // chopper-stabilised
   CHECK(classic.realisations.at("dead_zone") == Realisation{{1, ElementKind::function_generator}});
@@ -142,6 +146,7 @@ TEST_CASE("a bad profile is refused with its file, line and key", "[machine]") {
              Catch::StartsWith("my.ini:2: circuit.switched_spring = sometimes: must be true or false"));
   CHECK_THAT(profile_error("[comparator]\nidle_throw = floating\n"),
              Catch::StartsWith("my.ini:2: comparator.idle_throw = floating: must be ground or open"));
+  CHECK_THAT(profile_error("[circuit]\nlock_catch = 0.5\n"), Catch::StartsWith("my.ini:2: circuit.lock_catch = 0.5: "));
 }
 
 TEST_CASE("settings --machine with an unknown machine exits 2 and names the shipped ones", "[machine]") {

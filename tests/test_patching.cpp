@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <map>
 #include <regex>
 #include <set>
@@ -248,7 +249,16 @@ TEST_CASE("the committed patch sheets in patches/ are what the allocation writes
     INFO(file << " differs; if the change is intended, regenerate with: build/gearpatch patch scenes/" << scene
               << ".ini --machine the-analog-thing -o " << file);
     REQUIRE(std::filesystem::exists(testing::source_path(file)));
-    CHECK(to_text(on(scene, "the-analog-thing")) == read_file(testing::source_path(file)));
+    const MachinePatch patch = on(scene, "the-analog-thing");
+    CHECK(to_text(patch) == read_file(testing::source_path(file)));
+    // The JSON beside it, as `patch --no-offset-check --json` writes it.
+    const std::string json = "patches/" + scene + ".the-analog-thing.json";
+    INFO(json << " differs; regenerate with: build/gearpatch patch scenes/" << scene
+              << ".ini --machine the-analog-thing --no-offset-check -o " << file << " --json " << json);
+    nlohmann::json committed = nlohmann::json::parse(read_file(testing::source_path(json)));
+    CHECK(committed["offset_check"].is_null());
+    committed.erase("offset_check");
+    CHECK(committed == nlohmann::json::parse(to_json(patch).dump()));
   }
 }
 

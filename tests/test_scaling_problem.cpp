@@ -220,6 +220,28 @@ TEST_CASE("--autoscale solves again with the simulated peaks, each at 1/(1 + hea
   }
 }
 
+TEST_CASE("the profile's lock catch share is the floor the lock puts on β", "[scaling]") {
+  // The strongest reaction (α = 1 at weight 10) stops a full-scale secondary
+  // in 1/(10·k0·β) s of the run: β = 1/(10·k0·share·T) while the lock fixes it.
+  ScalingInput in = scaling_input(testing::example_scene("bild6c"));
+  ScalingOptions o;
+  o.check_peaks = false;
+  auto lock_beta = [&] { return 1 / (10 * in.machine.integrator_constant * in.machine.lock_catch_share * in.duration); };
+  const ScaledProgram tight = scale_program(in, o);  // generic: 0.1 %
+  CHECK_THAT(tight.fixed_by.at("beta"), Catch::Contains("catching the load within 0.1 % of the run"));
+  CHECK(tight.beta == Approx(lock_beta()).epsilon(1e-6));
+  in.machine.lock_catch_share = 2e-3;
+  const ScaledProgram looser = scale_program(in, o);
+  CHECK_THAT(looser.fixed_by.at("beta"), Catch::Contains("catching the load within 0.2 % of the run"));
+  CHECK(looser.beta == Approx(tight.beta / 2).epsilon(1e-6));
+  // At 1 % the lock asks less than alpha3 (0.3 at β = 33.3, at most 1 at weight 1): β = 10.
+  in.machine.lock_catch_share = 1e-2;
+  const ScaledProgram loose = scale_program(in, o);
+  CHECK(loose.beta > lock_beta());
+  CHECK_THAT(loose.fixed_by.at("beta"), Catch::Contains("alpha3 at its largest"));
+  CHECK(loose.beta == Approx(tight.beta * 0.3).epsilon(1e-4));
+}
+
 TEST_CASE("the machine's chosen k0 is kept unless the run would not fit its OP time", "[scaling]") {
   // Only β·k0 enters the constraints: every k0 gives the same settings.
   ScalingInput in = scaling_input(testing::example_scene("bild6c"));

@@ -322,8 +322,9 @@ class Builder {
   /// asks for it (untrimmed offsets), where the scene has backlash (free
   /// flight) and no damping. Through the play X' is zero but for the X'
   /// stage's output offset, which unswitched acts as a torque all through
-  /// the free flight (measured on THE ANALOG THING with the profile's
-  /// offsets: bild6c 31.8 % unswitched, 23.6 % switched, in Δφ). Not beside
+  /// the free flight (measured with the profiles' offsets, worst signal:
+  /// bild6c on THE ANALOG THING 8.5 % unswitched, 6.7 % switched; on the
+  /// Model-1 10.4 % and 6.75 %). Not beside
   /// the damping's switches: there the spring takes two more comparators,
   /// and THE ANALOG THING has two (bild5b, bild5c would need two machines)
   /// for 23 instead of 19 of 30 damped random scenes of seed 3101 passing.

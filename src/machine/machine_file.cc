@@ -44,6 +44,7 @@ std::map<std::string, std::string> profile_keys() {
       {"comparator.switch_resistance", "ohms of a closed switch"},
       {"comparator.idle_throw", "ground or open: what a switched input sees while its switch is off"},
       {"circuit.switched_spring", "true: the spring enters the torque summer only while the flanks touch"},
+      {"circuit.lock_catch", "share of the run within which the strongest self-locking reaction stops the load"},
       {"amplifier.model", "the amplifier's name"},
       {"amplifier.offset", "typical input offset, V"},
       {"amplifier.offset_spread", "one standard deviation of the offset, V"},
@@ -262,6 +263,7 @@ void read_elements(const ProfileReader& r, MachineProfile& m) {
   m.switch_resistance = r.number("comparator.switch_resistance", m.switch_resistance, 1e-3, 1e6);
   m.idle_throw_grounded = r.either("comparator.idle_throw", "ground", "open", m.idle_throw_grounded);
   m.switched_spring = r.boolean("circuit.switched_spring", m.switched_spring);
+  m.lock_catch_share = r.number("circuit.lock_catch", m.lock_catch_share, 1e-4, 0.05);
 }
 
 void read_amplifier_and_run(const ProfileReader& r, MachineProfile& m) {

@@ -77,6 +77,12 @@ struct MachineProfile {
   /// the contact comparators, as the damping is: on untrimmed amplifiers the
   /// X' stage's output offset would act as a torque all through the free flight.
   bool switched_spring = false;
+  /// The share of the run within which the strongest self-locking reaction
+  /// must stop a full-scale secondary turning against the engagement (the
+  /// paper's k_Re → ∞ stops it at once); β is raised until it does. A larger share
+  /// shortens the run in machine time, so untrimmed offsets drift less, and
+  /// lets the catch take longer.
+  double lock_catch_share = 1e-3;
   AmplifierModel amplifier;
   std::map<std::string, Realisation> realisations;  ///< nonlinear block → elements it takes
   std::vector<std::string> modes;         ///< IC, OP, HALT, REP …

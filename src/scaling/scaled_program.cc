@@ -246,17 +246,18 @@ void add_notes(const ScalingInput& s, const GearParameters& p, const ScalingOpti
 /// drive an integrator at α·n ≤ the largest weight, so the reaction (blocks
 /// 16/17) is dialled at its strongest, α_lock = 1 at that weight, and stops a
 /// full-scale speed in 1/(n·k0·β) s of real time. Automatic β is raised until
-/// that is at most lock_catch_fraction of the run; an explicit β is warned about.
+/// that is at most the machine's lock_catch_share of the run; an explicit β is warned about.
 void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, Table1& t, TimeScale& ts) {
   const int strongest = *std::max_element(s.machine.weights.begin(), s.machine.weights.end());
   const double k0 = s.machine.integrator_constant;
-  const double needed = 1 / (strongest * k0 * lock_catch_fraction * s.duration);
+  const double share = s.machine.lock_catch_share;
+  const double needed = 1 / (strongest * k0 * share * s.duration);
   if (!explicit_beta && ts.beta < needed) {
     ts.beta = round_up_125(needed);
     ts.reason += fmt::format("; raised to {:g} so that the self-locking reaction, at most {:g} MU per "
                              "machine second, catches the load within {:g} % of the run "
                              "(1/(n·k0·β) = {:.3g} s)",
-                             ts.beta, strongest * k0, 100 * lock_catch_fraction, 1 / (strongest * k0 * ts.beta));
+                             ts.beta, strongest * k0, 100 * share, 1 / (strongest * k0 * ts.beta));
     for (const auto& c : t.entries)
       if (c.kind == CoefficientKind::integrator && c.name != Setting::alpha_lock && c.rate / ts.beta / k0 < s.machine.smallest_setting)
         ts.warnings.push_back(fmt::format("{} = {:.3g} at β = {:g} is below {:g}: hard to set precisely",
@@ -265,7 +266,7 @@ void strongest_lock(const ScalingInput& s, std::optional<double> explicit_beta, 
     ts.warnings.push_back(fmt::format(
         "at β = {:g} the self-locking reaction needs {:.3g} s to catch the load ({:.2g} % of the run): "
         "β >= {:.3g} keeps it within {:g} %", ts.beta, 1 / (strongest * k0 * ts.beta),
-        100 / (strongest * k0 * ts.beta * s.duration), needed, 100 * lock_catch_fraction));
+        100 / (strongest * k0 * ts.beta * s.duration), needed, 100 * share));
   }
   dial_strongest_lock(s.machine, ts.beta, t);
 }

@@ -71,7 +71,8 @@ ScalingProblem scaling_problem(const ScalingInput& s, const Maxima& bounds, doub
   pr.amplifier_frequency = max_amplifier_frequency(s.machine);
   pr.beta_for_bandwidth = contact_frequency(p) / pr.amplifier_frequency;
   if (p.self_locking) {
-    pr.beta_for_lock = 1 / (pr.amplifying_gain() * pr.k0 * lock_catch_fraction * s.duration);
+    pr.lock_catch_share = s.machine.lock_catch_share;
+    pr.beta_for_lock = 1 / (pr.amplifying_gain() * pr.k0 * pr.lock_catch_share * s.duration);
     if (catch_speed && *catch_speed > 0 && pr.bounds.count(Maximum::speed_secondary) &&
         pr.bounds.count(Maximum::torque)) {
       const double v = *catch_speed;
@@ -252,7 +253,7 @@ class Model {
                       "machine time)", pr_.amplifier_frequency));
     floor(pr_.beta_for_lock, ConstraintGroup::Kind::beta_lock,
           fmt::format("the self-locking reaction catching the load within {:g} % of the run",
-                      100 * lock_catch_fraction));
+                      100 * pr_.lock_catch_share));
     if (pr_.lock_catch_torque > 0) {  // β·φ̇sm·M0m >= c·v²/(2·n_max·k0·share)
       const ConstraintGroup group{ConstraintGroup::Kind::lock_catch, std::nullopt, std::nullopt};
       Terms row{{b_, 1}, {u_.at(Maximum::speed_secondary), 1}, {u_.at(Maximum::torque), 1}};

@@ -60,6 +60,7 @@ struct ScalingProblem {
   double beta_for_bandwidth = 0;      ///< β >= this: contact oscillation within the amplifiers' bandwidth and slew
   double amplifier_frequency = 0;     ///< that limit, rad per machine second, for messages
   double beta_for_lock = 0;           ///< β >= this: the self-locking reaction catches in time
+  double lock_catch_share = 0;        ///< within this share of the run (the machine's), for messages
   /// β·φ̇sm·M0m >= this (self-locking): the strongest lock reaction the machine
   /// dials, a = n_max·k0·β·φ̇sm, stops a secondary at its peak speed v within
   /// v²/(2a) of the flank; that overshoot, as spring torque c·v²/(2a), stays

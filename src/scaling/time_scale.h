@@ -22,11 +22,6 @@ struct IntegratorRate {
 /// integrators, which comparators and diode blocks follow without lag).
 inline constexpr double max_machine_frequency_per_k0 = 100.0;
 
-/// The share of the run within which the self-locking reaction must catch a
-/// secondary turning at full scale against the engagement (the paper's
-/// k_Re → ∞ stops it at once); β is raised until it does.
-inline constexpr double lock_catch_fraction = 1e-3;
-
 /// The fastest the machine's amplifiers follow, in rad per machine second:
 /// each computing amplifier (gain-bandwidth f_T, noise gain up to 1 + the
 /// largest weight) lags a swing at ω by about ω·(1 + n_max)/(2π·f_T); at most
