@@ -52,8 +52,9 @@ std::string to_string(BlockKind block);
 /// op-amp swings to 1 MU plus a diode drop with a volt to spare, else 1/2.
 /// A saturated rectifier holds its idle output at a few mV, which the lock's
 /// weight-10 input turns into a drift of the secondary (measured on THE
-/// ANALOG THING, ±10.5 V swing, bild6c with perfect components: φ̇s 9.8 % of
-/// full scale at gain 1, 0.10 % at gain 1/2).
+/// ANALOG THING, ±10.5 V swing, bild6c with perfect components at normal k0,
+/// the lock catching within 0.1 % of the run: φ̇s 9.8 % of full scale at
+/// gain 1, 0.10 % at gain 1/2).
 double halfwave_gain(Level level, const MachineProfile& machine);
 
 /// How far beyond its offset (MU) the ideal level's comparator, U·tanh((in −
