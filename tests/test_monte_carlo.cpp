@@ -126,8 +126,11 @@ TEST_CASE("the budget's dominant component on the-analog-thing is the one ablati
   // Scenes with one clearly heaviest share in the worst signal: on bild6a the
   // two heaviest in omega_p lie within 15 % of each other (`gearpatch budget`:
   // gp_inv_m0 0.265 %, gp_amp_xp 0.231 % of full scale), too close for one
-  // deck's ablation to order.
-  const std::string name = GENERATE("bild5b", "bild6c");
+  // deck's ablation to order. On bild6c gp_int_s is the heaviest by far (9.3 %
+  // against 0.33 % in omega_s), but the profile's one deck errs 1.15 %, its
+  // offsets partly cancelling: removing gp_int_s's moves it by 0.17 %,
+  // gp_inv_m0's by 0.33 %. One deck within the tolerance cannot order them.
+  const std::string name = GENERATE("bild5b");
   CAPTURE(name);
   const Scene s = load_scene(testing::scene_path(name), "the-analog-thing");
   verify::VerifyOptions o;

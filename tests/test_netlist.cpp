@@ -178,6 +178,47 @@ TEST_CASE("the spring enters the torque summer through the contact switches exac
   CHECK(!c.uses(BlockKind::comparator));
 }
 
+TEST_CASE("at the hardware level the lock's two halves take one input of the secondary integrator", "[netlist]") {
+  const auto circuit_of = [](const std::string& name, const std::string& machine, Level level) {
+    ScalingOptions o;
+    o.check_peaks = false;
+    o.comparator_offset = comparator_offset(level);
+    return build_circuit(scale_program(load_scene(testing::source_path("scenes/" + name + ".ini"), machine), o), level);
+  };
+  const auto int_s = [](const Circuit& c) {
+    for (const Amplifier& a : c.amplifiers)
+      if (a.name == "int_s") return a;
+    FAIL("no int_s");
+    return Amplifier{};
+  };
+  for (const std::string machine : {"the-analog-thing", "model-1", "classic"}) {
+    INFO(machine);
+    const Circuit hardware = circuit_of("bild6c", machine, Level::hardware);
+    const Amplifier a = int_s(hardware);
+    CHECK(a.inputs.size() == int_s(circuit_of("bild6c", machine, Level::ideal)).inputs.size() - 1);
+    int chained = 0;
+    for (const AmplifierInput& in : a.inputs) {
+      if (in.otherwise.empty()) continue;
+      ++chained;
+      CHECK(in.switched_by == "engaged_p");
+      REQUIRE(in.otherwise.size() == 1);
+      CHECK(in.otherwise[0].switched_by == "engaged_n");
+      CHECK(in.otherwise[0].from == "lock_above");
+      CHECK(in.otherwise[0].weight == in.weight);  // the chained half enters at the first half's weight
+      CHECK(paths(in).size() == 2);
+    }
+    CHECK(chained == 1);
+    const std::string deck = render_netlist(hardware, {});
+    CHECK_THAT(deck, Catch::Contains("Xsw_int_s_4 int_s_4 int_s_4b_sw int_s_4_sw engaged_p gp_mux_input"));
+    CHECK_THAT(deck, Catch::Contains(".subckt gp_mux_input in alt out ctrl"));
+  }
+  // the ideal level and the latched lock keep an input per half
+  CHECK_THAT(render_netlist(circuit_of("bild6c", "the-analog-thing", Level::ideal), {}), !Catch::Contains("gp_mux_input"));
+  const Circuit latched = circuit_of("extremes/lock-zero-backlash", "the-analog-thing", Level::hardware);
+  for (const AmplifierInput& in : int_s(latched).inputs) CHECK(in.otherwise.empty());
+  CHECK_THAT(render_netlist(latched, {}), !Catch::Contains("gp_mux_input"));
+}
+
 TEST_CASE("each setting is one .param used by the elements it sets", "[netlist]") {
   for (Level level : {Level::ideal, Level::hardware}) {
     const Generated g = generate("bild6c", level);

@@ -212,6 +212,29 @@ TEST_CASE("a sheet missing any one numbered wire is refused, naming the open jac
     }
 }
 
+TEST_CASE("the hardware sheet chains the lock's two halves into one input, and as wired passes at 2 %",
+          "[patching][sheet]") {
+  // Model-1: bild6c fits its rack, and the sheet's deck is what a person wires.
+  const Scene scene = load_scene(testing::scene_path("bild6c"), "model-1");
+  const Wiring w = sheet_at(scene, circuit::Level::hardware);
+  int chained = 0;
+  for (const Wire& x : w.wires)
+    if (x.carries.find("min(clip, 0) while A + B > 0, else max(clip, 0) while A + B > 0, else 0") != std::string::npos) {
+      ++chained;
+      CHECK(x.to.jack == "10a");  // the one weight-10 input both halves take
+    }
+  CHECK(chained == 1);
+  auto ngspice = spice::make_batch_ngspice();
+  verify::VerifyOptions o;
+  o.level = circuit::Level::hardware;
+  o.deck_text = sheet_deck(w, circuit::Level::hardware);
+  o.deck_header = spice::read_deck_header(*o.deck_text, "sheet");
+  const verify::VerifyResult r = verify::verify(scene, o, *ngspice);
+  for (const auto& f : r.failures) INFO(f);
+  CHECK(r.tolerance == 0.02);
+  CHECK(r.passed);
+}
+
 TEST_CASE("a sheet with one diode the wrong way round fails verify", "[patching][sheet]") {
   for (const std::string name : {"bild5b", "bild6c"}) {
     const Scene scene = load_scene(testing::scene_path(name), "the-analog-thing");

@@ -37,14 +37,13 @@ struct ExampleRecording {
   verify::MeasuredVerify verdict;
 };
 
-/// The example decks that fail at 2 %: bild6c on the two machines with
-/// untrimmed offsets, whose switched-off inputs stay tied to ground and so
-/// keep the φ̇s integrator's offset gain high through the free flights
-/// (`gearpatch verify scenes/bild6c.ini --machine model-1 --level hardware`);
-/// every other deck passes, so a deck that regresses fails the test, and so
-/// do these once they pass.
-bool fails_at_two_percent(const std::string& scene, const std::string& machine) {
-  return scene == "bild6c" && (machine == "model-1" || machine == "the-analog-thing");
+/// The recordings that fail at 2 % though their deck passes: bild6c on the
+/// Model-1, whose deck passes at 1.49 % with its last impact 1.89 % of the
+/// run late, near the 2 % time tube; the recording (its start found to 0.5 %
+/// of the run, 8-bit steps, noise) errs 3.6 % in φ̇s. A fix shows: the test
+/// requires these to fail and every other to pass.
+bool recording_fails_at_two_percent(const std::string& scene, const std::string& machine) {
+  return scene == "bild6c" && machine == "model-1";
 }
 
 /// The largest signal error of a verdict, % of full scale, and the signal.
@@ -131,13 +130,11 @@ TEST_CASE("a recording of each example on each machine is judged as the example'
     CHECK(peak_loss(v) < 0.1 * 0.02);  // the smoothing takes less than a tenth of the tolerance off a peak
     CHECK(v.measured.start == Approx(e.setup.run_start).margin(0.005 * run.result.beta * run.result.duration));
     check_error_within_recording(run, v);
-    CHECK(run.result.passed != fails_at_two_percent(e.scene, e.machine));
-    if (!run.result.passed) {  // the recording is judged like the deck: it fails as the deck's run does
-      CHECK(!v.result.passed);
-      continue;
-    }
-    // The deck passes: its recording, smoothed before the tube, passes at 2 % as the deck does.
-    CHECK(v.result.passed);
+    // Every example's deck passes at 2 % on every machine, and its recording,
+    // smoothed before the tube, passes at 2 % as the deck does (but one, above).
+    CHECK(run.result.passed);
+    CHECK(v.result.passed != recording_fails_at_two_percent(e.scene, e.machine));
+    if (!v.result.passed) continue;
     for (const auto& res : v.measured.resolution) CHECK(res.fraction < res.recorded);
   }
 }
@@ -165,7 +162,7 @@ TEST_CASE("each example's recording names an inverted and a swapped channel and 
     const std::string& machine = machines[i % machines.size()];
     const MachineRun& run = hardware_run(scenes[i], machine);
     INFO(scenes[i] << " on " << machine);
-    if (!run.result.passed) continue;  // a deck that fails is judged above, as its own run
+    if (!run.result.passed) continue;  // a deck that fails fails the test above
     const std::size_t ch = i % 4, next = (i + 1) % 4;
     const std::string& format = scope_formats()[i % scope_formats().size()].first;
     ScopeSetup inverted = setup_for(run, 2000);

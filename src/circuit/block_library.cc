@@ -316,6 +316,10 @@ const BlockInfo& block_info(std::string_view block) {
   throw Error(fmt::format("unknown circuit block '{}' (known: {})", block, known));
 }
 
+std::string render_mux(Level level, const MachineProfile& machine) {
+  return render(level, "mux", context(level, machine));
+}
+
 std::string render_models(Level level, const MachineProfile& machine) {
   data ctx = context(level, machine);
   std::string text = render(level, "models", ctx);

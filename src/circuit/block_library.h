@@ -64,6 +64,9 @@ double ideal_latch_set_depth_mu();
 /// Shared lines every deck of that level needs once, before any block:
 /// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
 std::string render_models(Level level, const MachineProfile& machine);
+/// gp_mux_input: two switched inputs chained through one amplifier input
+/// (AmplifierInput::otherwise).
+std::string render_mux(Level level, const MachineProfile& machine);
 
 /// The `.subckt gp_<block> pins... params: <param>=<default>` definition of a
 /// fixed-pin block; the composer instantiates it as many times as needed,

@@ -220,6 +220,19 @@ class Builder {
         in[in.size() - 2].latched_by = "caught_p";
         in.back().latched_by = "caught_n";
       }
+      // At the hardware level the two halves, never on together, share one
+      // weight-10 input: the engaged_p switch's idle throw takes the
+      // engaged_n switch's output. A grounded idle throw otherwise keeps
+      // each half's input on the summing junction, and the integrator's
+      // offset drives φ̇s by their weights through every free flight
+      // (measured, bild6c with the profile's offsets, worst signal: 6.7 %
+      // two inputs, 1.20 % chained on THE ANALOG THING; 6.75 % and 1.49 % on
+      // the Model-1). The latched halves keep an input each.
+      if (!latch && level_ == Level::hardware) {
+        AmplifierInput above = std::move(in.back());
+        in.pop_back();
+        in.back().otherwise.push_back(std::move(above));
+      }
     }
     if (has(Setting::alpha_load)) {
       const Section load(feature_, "load torque");
@@ -323,8 +336,8 @@ class Builder {
   /// flight) and no damping. Through the play X' is zero but for the X'
   /// stage's output offset, which unswitched acts as a torque all through
   /// the free flight (measured with the profiles' offsets, worst signal:
-  /// bild6c on THE ANALOG THING 8.5 % unswitched, 6.7 % switched; on the
-  /// Model-1 10.4 % and 6.75 %). Not beside
+  /// bild6c on THE ANALOG THING 7.08 % unswitched, 1.20 % switched; on the
+  /// Model-1 7.45 % and 1.49 %). Not beside
   /// the damping's switches: there the spring takes two more comparators,
   /// and THE ANALOG THING has two (bild5b, bild5c would need two machines)
   /// for 23 instead of 19 of 30 damped random scenes of seed 3101 passing.
@@ -572,6 +585,13 @@ class Builder {
 };
 
 }  // namespace
+
+std::vector<const AmplifierInput*> paths(const AmplifierInput& in) {
+  std::vector<const AmplifierInput*> out{&in};
+  for (const AmplifierInput& next : in.otherwise)
+    for (const AmplifierInput* p : paths(next)) out.push_back(p);
+  return out;
+}
 
 std::vector<std::string> Circuit::amplifier_outputs() const {
   std::vector<std::string> nodes;

@@ -33,7 +33,14 @@ struct AmplifierInput {
   std::string feature = {};
   /// With released_by: the latch's set node, where it is not switched_by.
   std::string latched_by = {};
+  /// With switched_by: the switched path its switch routes while off (the
+  /// other half of a pair never on together), so that the two take one
+  /// input of the amplifier (gp_mux_input); empty: the idle throw.
+  std::vector<AmplifierInput> otherwise = {};
 };
+
+/// An input and the paths chained behind it (AmplifierInput::otherwise), first to last.
+std::vector<const AmplifierInput*> paths(const AmplifierInput& in);
 
 /// An inverting integrator or summer of the machine, with its output node.
 struct Amplifier {

@@ -57,13 +57,17 @@ std::string library(const Circuit& c, Level level, const MachineProfile& m) {
   std::map<std::string, BlockKind> kinds;  // by name: the deck lists them alphabetically
   auto add = [&](BlockKind kind) { kinds.emplace(to_string(kind), kind); };
   for (const auto& b : c.blocks) add(b.block);
+  bool chained = false;
   for (const auto& a : c.amplifiers)
-    for (const auto& in : a.inputs) {
-      if (in.potentiometer) add(BlockKind::potentiometer);
-      if (!in.switched_by.empty()) add(BlockKind::analog_switch);
-      if (!in.released_by.empty()) add(BlockKind::latch);
-    }
+    for (const auto& first : a.inputs)
+      for (const AmplifierInput* in : paths(first)) {
+        if (in->potentiometer) add(BlockKind::potentiometer);
+        if (!in->switched_by.empty()) add(BlockKind::analog_switch);
+        if (!in->released_by.empty()) add(BlockKind::latch);
+        chained = chained || !in->otherwise.empty();
+      }
   for (const auto& [name, kind] : kinds) text += "\n" + render_block(level, kind, m);
+  if (chained) text += render_mux(level, m);
   for (const auto& a : c.amplifiers) {
     std::vector<Input> pins;
     for (std::size_t k = 0; k < a.inputs.size(); ++k)
@@ -73,30 +77,35 @@ std::string library(const Circuit& c, Level level, const MachineProfile& m) {
   return text;
 }
 
+/// The potentiometer and switch lines of one input path (`wiper` names the
+/// potentiometer's output); returns the node the path ends at.
+std::string path_instances(const AmplifierInput& in, const std::string& wiper, std::string& text) {
+  std::string node = in.from;
+  if (in.potentiometer) {
+    text += fmt::format("Xpot_{} {} {} gp_potentiometer params: setting={{{}}}\n", wiper, node, wiper,
+                        to_string(*in.potentiometer));
+    node = wiper;
+  }
+  if (in.switched_by.empty()) return node;
+  const std::string after = node + "_sw";
+  if (!in.otherwise.empty()) {
+    const std::string alt = path_instances(in.otherwise.front(), wiper + "b", text);
+    text += fmt::format("Xsw_{} {} {} {} {} gp_mux_input\n", node, node, alt, after, in.switched_by);
+  } else if (in.released_by.empty()) {
+    text += fmt::format("Xsw_{} {} {} {} gp_switched_input\n", node, node, after, in.switched_by);
+  } else {
+    text += fmt::format("Xsw_{} {} {} {} {} {} gp_latched_input\n", node, node, after, in.switched_by,
+                        in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by);
+  }
+  return after;
+}
+
 /// The instance lines of one amplifier and the potentiometers and switches in front of it.
 std::string amplifier_instances(const Amplifier& a) {
   std::string text = fmt::format("* {}\n", a.comment);
   std::string pins;
-  for (std::size_t k = 0; k < a.inputs.size(); ++k) {
-    const AmplifierInput& in = a.inputs[k];
-    std::string node = in.from;
-    if (in.potentiometer) {
-      const std::string wiper = fmt::format("{}_{}", a.name, k + 1);
-      text += fmt::format("Xpot_{} {} {} gp_potentiometer params: setting={{{}}}\n", wiper, node, wiper,
-                          to_string(*in.potentiometer));
-      node = wiper;
-    }
-    if (!in.switched_by.empty()) {
-      const std::string after = node + "_sw";
-      if (in.released_by.empty())
-        text += fmt::format("Xsw_{} {} {} {} gp_switched_input\n", node, node, after, in.switched_by);
-      else
-        text += fmt::format("Xsw_{} {} {} {} {} {} gp_latched_input\n", node, node, after, in.switched_by,
-                            in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by);
-      node = after;
-    }
-    pins += node + " ";
-  }
+  for (std::size_t k = 0; k < a.inputs.size(); ++k)
+    pins += path_instances(a.inputs[k], fmt::format("{}_{}", a.name, k + 1), text) + " ";
   return text + fmt::format("X{} {}{} gp_{}\n", a.name, pins, a.out, a.name);
 }
 

@@ -160,39 +160,42 @@ class Allocator {
     std::map<int, int> needed, offered;
     for (int w : type == c_.machine.elements.end() ? std::vector<int>{} : type->second.inputs) ++offered[w];
     for (std::size_t k = 0; k < amp.inputs.size(); ++k) {
-      const circuit::AmplifierInput& in = amp.inputs[k];
-      ++needed[in.weight];
-      Connection wire;
-      wire.number = static_cast<int>(a_.connections.size()) + 1;
-      wire.from_node = in.from;
-      wire.from_label = label(in.from);
-      wire.from_signal = c_.signal_of(in.from);
-      wire.to_instance = amp.name;
-      wire.to_label = target.label;
-      wire.input = static_cast<int>(k) + 1;
-      wire.weight = in.weight;
-      if (in.potentiometer) {
-        wire.potentiometer = in.potentiometer;
-        wire.setting = params_.at(*in.potentiometer);
-        auto dial = c_.dial_settings.find(*in.potentiometer);
-        wire.loaded_setting = c_.machine.potentiometers_buffered || dial == c_.dial_settings.end()
-                                  ? wire.setting : dial->second;
-        if (!is_one(wire.setting))
-          wire.potentiometer_label = potentiometer(to_string(*in.potentiometer),
-                                                   fmt::format("{} into {} input {}", to_string(*in.potentiometer),
-                                                               target.label, k + 1),
-                                                   in.potentiometer, wire.setting, wire.loaded_setting, in.weight,
-                                                   in.feature);
-        else
-          a_.notes.push_back(fmt::format("{} = 1: a plain wire into {} (weight {})", to_string(*in.potentiometer),
-                                         target.label, in.weight));
+      ++needed[amp.inputs[k].weight];
+      // a chained path (AmplifierInput::otherwise) reaches the same input through the first path's switch
+      for (const circuit::AmplifierInput* path : circuit::paths(amp.inputs[k])) {
+        const circuit::AmplifierInput& in = *path;
+        Connection wire;
+        wire.number = static_cast<int>(a_.connections.size()) + 1;
+        wire.from_node = in.from;
+        wire.from_label = label(in.from);
+        wire.from_signal = c_.signal_of(in.from);
+        wire.to_instance = amp.name;
+        wire.to_label = target.label;
+        wire.input = static_cast<int>(k) + 1;
+        wire.weight = in.weight;
+        if (in.potentiometer) {
+          wire.potentiometer = in.potentiometer;
+          wire.setting = params_.at(*in.potentiometer);
+          auto dial = c_.dial_settings.find(*in.potentiometer);
+          wire.loaded_setting = c_.machine.potentiometers_buffered || dial == c_.dial_settings.end()
+                                    ? wire.setting : dial->second;
+          if (!is_one(wire.setting))
+            wire.potentiometer_label = potentiometer(to_string(*in.potentiometer),
+                                                     fmt::format("{} into {} input {}", to_string(*in.potentiometer),
+                                                                 target.label, k + 1),
+                                                     in.potentiometer, wire.setting, wire.loaded_setting, in.weight,
+                                                     in.feature);
+          else
+            a_.notes.push_back(fmt::format("{} = 1: a plain wire into {} (weight {})", to_string(*in.potentiometer),
+                                           target.label, in.weight));
+        }
+        if (!in.switched_by.empty()) {
+          wire.switch_label = label(in.switched_by);
+          wire.switch_node = in.switched_by;
+        }
+        if (!in.released_by.empty()) latch(wire, in);
+        a_.connections.push_back(wire);
       }
-      if (!in.switched_by.empty()) {
-        wire.switch_label = label(in.switched_by);
-        wire.switch_node = in.switched_by;
-      }
-      if (!in.released_by.empty()) latch(wire, in);
-      a_.connections.push_back(wire);
     }
     for (const auto& [weight, n] : needed)
       if (n > offered[weight])

@@ -40,7 +40,7 @@ struct Connection {
   /// or a comparator of its own) and the node that releases it.
   std::string latch_label, latch_set_node, latch_reset_node;
   std::string to_instance, to_label;     ///< the amplifier ("int_p") and its element ("INT1")
-  int input = 0;                         ///< the circuit's input index, 1-based
+  int input = 0;                         ///< the circuit's input index, 1-based (a chained path: its first path's)
   int weight = 1;
 };
 

@@ -361,8 +361,9 @@ class Wirer {
   /// Whether an amplifier or block takes the node.
   bool used(const std::string& node) const {
     for (const auto& a : c_.amplifiers)
-      for (const auto& in : a.inputs)
-        if (in.from == node || in.switched_by == node || in.released_by == node) return true;
+      for (const auto& first : a.inputs)
+        for (const circuit::AmplifierInput* in : circuit::paths(first))
+          if (in->from == node || in->switched_by == node || in->released_by == node) return true;
     for (const auto& b : c_.blocks)
       if (!b.nodes.empty() && b.nodes[0] == node) return true;
     return false;
@@ -643,22 +644,26 @@ class Wirer {
     for (const circuit::AmplifierInput& in : a.inputs) weights.push_back(in.weight);
     std::map<int, int> direct = direct_jacks(target, weights);
     std::map<int, std::vector<Jack>> rest;
-    for (const circuit::AmplifierInput& in : a.inputs) {
-      Jack from = out_of(in.from);
-      if (in.potentiometer) {
-        const double value = params_.at(*in.potentiometer);
-        if (!is_one(value))
-          from = potentiometer(from, to_string(*in.potentiometer), value, dial_of(*in.potentiometer, value),
-                               fmt::format("{} = {:.5g}", to_string(*in.potentiometer), value));
-      }
-      if (!in.released_by.empty()) {
-        from = latched(in.switched_by, in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by, from);
-      } else if (!in.switched_by.empty()) {
-        from = switched(in.switched_by, from);
-      }
-      to_input(target, from, in.weight, direct, rest);
-    }
+    for (const circuit::AmplifierInput& in : a.inputs) to_input(target, path(in), in.weight, direct, rest);
     sum_rest(target, rest);
+  }
+
+  /// The jack an input path ends at: its potentiometer, then its switch,
+  /// whose idle throw takes the chained path (AmplifierInput::otherwise) if any.
+  Jack path(const circuit::AmplifierInput& in) {
+    Jack from = out_of(in.from);
+    if (in.potentiometer) {
+      const double value = params_.at(*in.potentiometer);
+      if (!is_one(value))
+        from = potentiometer(from, to_string(*in.potentiometer), value, dial_of(*in.potentiometer, value),
+                             fmt::format("{} = {:.5g}", to_string(*in.potentiometer), value));
+    }
+    if (!in.released_by.empty())
+      return latched(in.switched_by, in.latched_by.empty() ? in.switched_by : in.latched_by, in.released_by, from);
+    if (in.switched_by.empty()) return from;
+    if (in.otherwise.empty()) return switched(in.switched_by, from);
+    const Jack other = path(in.otherwise.front());
+    return switched(in.switched_by, from, other);
   }
 
   void initial_conditions() {
