@@ -65,7 +65,7 @@ double ideal_latch_set_depth_mu();
 /// .model lines (switch, diode) and, for hardware, the gp_opamp subckt.
 std::string render_models(Level level, const MachineProfile& machine);
 /// gp_mux_input: two switched inputs chained through one amplifier input
-/// (AmplifierInput::otherwise).
+/// (AmplifierInput::otherwise); the circuit chains them at the hardware level only.
 std::string render_mux(Level level, const MachineProfile& machine);
 
 /// The `.subckt gp_<block> pins... params: <param>=<default>` definition of a
