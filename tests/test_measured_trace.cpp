@@ -93,6 +93,36 @@ TEST_CASE("the run's start is found where a signal leaves its initial level", "[
   CHECK_THROWS_WITH(verify::find_run_start(t, {flat}, 10, "flat.csv"), Catch::Contains("give --start T"));
 }
 
+TEST_CASE("a deep record finds the run's start as closely as a short one", "[verify]") {
+  // The same ramp recorded 30 times as densely: 30000 samples a microsecond
+  // apart, so that twenty samples past the threshold span less than a step.
+  std::vector<double> t, y;
+  std::mt19937 random(11);
+  std::normal_distribution<double> gauss(0, 0.01);
+  const double lsb = 0.078125;
+  for (int i = 0; i < 30000; ++i) {
+    t.push_back(i * 1e-6);
+    const double clean = 0.3 + std::max(0.0, t.back() - 12.345e-3) * 2000;
+    y.push_back(std::round((clean + gauss(random)) / lsb) * lsb);
+  }
+  CHECK(verify::find_run_start(t, {y}, 10, "deep.csv") == Approx(12.345e-3).margin(2e-5));
+}
+
+TEST_CASE("a channel that jumps starts the run where it jumps", "[verify]") {
+  // A torque that is zero until the first impact steps to 2.875 V and rises
+  // a step per sample from there: the fit past the threshold spans two
+  // samples whose slope, followed back to the level, would put the start
+  // 46 samples before the jump.
+  std::vector<double> t, y;
+  const double dt = 1.3962e-4, jump = -0.5046;
+  for (int i = 0; i < 25000; ++i) {
+    t.push_back(-0.910533 + i * dt);
+    const double after = std::floor((t.back() - jump) / dt);
+    y.push_back(after < 0 ? 0.0 : 2.875 + 0.0625 * std::min(after, 3.0));
+  }
+  CHECK(verify::find_run_start(t, {y}, 10, "jump.csv") == Approx(jump).margin(3 * dt));
+}
+
 TEST_CASE("recordings of the hardware run pass at 2 % on each machine in every scope format",
           "[verify][ngspice]") {
   // Every recording must also stay within what the recording adds of its run's own error.

@@ -59,15 +59,21 @@ std::optional<double> departure(const std::vector<double>& t, const std::vector<
     throw Error(fmt::format("{}: a channel leaves its initial level at t = {:.6g} s, within the first {} samples: "
                             "the recording begins after the run started; give --start T",
                             path, t[i], held));
-  // Least squares through the first samples beyond the threshold (up to 6 thresholds away).
+  // Least squares through the samples from the threshold to 6 thresholds away,
+  // however densely recorded (a fixed count of a deep record spans less than
+  // a step, and its slope is the noise's), within a twentieth of the record.
+  const std::size_t most = std::max<std::size_t>(20, y.size() / 20);
   double st = 0, sy = 0, stt = 0, sty = 0;
   std::size_t n = 0;
-  for (std::size_t j = i; j < y.size() && n < 20 && (n < 2 || std::abs(y[j] - level) < 6 * threshold); ++j, ++n)
+  for (std::size_t j = i; j < y.size() && n < most && (n < 2 || std::abs(y[j] - level) < 6 * threshold); ++j, ++n)
     st += t[j], sy += y[j], stt += t[j] * t[j], sty += t[j] * y[j];
   const double slope = (n * sty - st * sy) / (n * stt - st * st);
   const double at_i = sy / n + slope * (t[i] - st / n);
-  double start = std::isfinite(slope) && slope != 0 ? t[i] - (at_i - level) / slope : t[i];
-  return std::clamp(start, t[held - 1], t[i]);  // the level held over the first samples
+  // Back along the slope by at most twice the fit's own span: a jump (two
+  // samples at one level past the threshold) has no slope to follow.
+  const double back = (at_i - level) / slope, span = t[i + n - 1] - t[i];
+  const double start = t[i] - (std::isfinite(back) ? std::clamp(back, 0.0, 2 * span) : 0.0);
+  return std::max(start, t[held - 1]);  // the level held over the first samples
 }
 
 }  // namespace

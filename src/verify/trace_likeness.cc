@@ -113,10 +113,11 @@ std::vector<std::string> what_the_trace_looks_like(const MeasuredTrace& m, const
     }
   }
   if (out.empty()) {
+    // Two digits: the start found from the trace and its noise move the best factor by up to a percent.
     const double read = like.rms_all(1);
     const auto [k, e] = best_time_factor(like);
     if (matches(e, read) && std::abs(std::log(k)) > std::log(1 + std::max(tolerance, 0.01)))
-      out.push_back(fmt::format("the recording matches the reference with the machine's time running {:.3g} × {} "
+      out.push_back(fmt::format("the recording matches the reference with the machine's time running {:.2g} × {} "
                                 "than the sheet's (beta {:.6g} instead of {:.6g}; rms {}, as read {}): another time "
                                 "scale; check the integrators' time constant and the mode (IC/OP) timing",
                                 k >= 1 ? k : 1 / k, k >= 1 ? "slower" : "faster", k * circuit.beta, circuit.beta,
