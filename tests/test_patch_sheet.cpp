@@ -229,9 +229,49 @@ TEST_CASE("the hardware sheet chains the lock's two halves into one input, and a
   o.level = circuit::Level::hardware;
   o.deck_text = sheet_deck(w, circuit::Level::hardware);
   o.deck_header = spice::read_deck_header(*o.deck_text, "sheet");
+  o.render_deck_text = [&](const circuit::TransientControl& control) {
+    return sheet_deck(w, circuit::Level::hardware, control);
+  };
   const verify::VerifyResult r = verify::verify(scene, o, *ngspice);
   for (const auto& f : r.failures) INFO(f);
   CHECK(r.tolerance == 0.02);
+  CHECK(r.passed);
+}
+
+namespace {
+
+/// ngspice that aborts its first run as at a switching corner, then runs each deck.
+class AbortsOnce : public spice::Simulator {
+ public:
+  spice::Vectors run(const std::string& deck, const spice::RunLimits& limits) override {
+    decks.push_back(deck);
+    if (decks.size() == 1) throw Error::numerical_abort("ngspice aborted: timestep too small (a test's)");
+    return ngspice->run(deck, limits);
+  }
+  std::unique_ptr<spice::Simulator> ngspice = spice::make_batch_ngspice();
+  std::vector<std::string> decks;
+};
+
+}  // namespace
+
+TEST_CASE("a sheet as wired that ngspice aborts runs once more under gear, as a generated deck does",
+          "[patching][sheet]") {
+  const Scene scene = load_scene(testing::scene_path("bild5b"), "model-1");
+  const Wiring w = ideal_sheet(scene);
+  verify::VerifyOptions o;
+  o.deck_text = sheet_deck(w, circuit::Level::ideal);
+  o.deck_header = spice::read_deck_header(*o.deck_text, "sheet");
+  AbortsOnce person;  // a deck a person edited has no second rendering: the abort stands
+  CHECK_THROWS_WITH(verify::verify(scene, o, person), Catch::Contains("timestep too small"));
+  o.render_deck_text = [&](const circuit::TransientControl& control) {
+    return sheet_deck(w, circuit::Level::ideal, control);
+  };
+  AbortsOnce sheet;
+  const verify::VerifyResult r = verify::verify(scene, o, sheet);
+  REQUIRE(r.retry);
+  CHECK(r.retry->change == "method=gear chgtol=1e-14");
+  REQUIRE(sheet.decks.size() == 2);
+  CHECK_THAT(sheet.decks[1], Catch::Contains("method=gear") && Catch::Contains("chgtol=1e-14"));
   CHECK(r.passed);
 }
 

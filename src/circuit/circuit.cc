@@ -225,9 +225,9 @@ class Builder {
       // engaged_n switch's output. A grounded idle throw otherwise keeps
       // each half's input on the summing junction, and the integrator's
       // offset drives φ̇s by their weights through every free flight
-      // (measured, bild6c with the profile's offsets, worst signal: 6.7 %
-      // two inputs, 1.20 % chained on THE ANALOG THING; 6.75 % and 1.49 % on
-      // the Model-1). The latched halves keep an input each.
+      // (measured, bild6c on THE ANALOG THING with the profile's offsets and
+      // the lock's catch in 0.3 % of the run, worst signal: 6.7 % with two
+      // inputs, 1.20 % chained). The latched halves keep an input each.
       if (!latch && level_ == Level::hardware) {
         AmplifierInput above = std::move(in.back());
         in.pop_back();
@@ -336,8 +336,7 @@ class Builder {
   /// flight) and no damping. Through the play X' is zero but for the X'
   /// stage's output offset, which unswitched acts as a torque all through
   /// the free flight (measured with the profiles' offsets, worst signal:
-  /// bild6c on THE ANALOG THING 7.08 % unswitched, 1.20 % switched; on the
-  /// Model-1 7.45 % and 1.49 %). Not beside
+  /// bild6c on the Model-1 7.40 % unswitched, 1.29 % switched). Not beside
   /// the damping's switches: there the spring takes two more comparators,
   /// and THE ANALOG THING has two (bild5b, bild5c would need two machines)
   /// for 23 instead of 19 of 30 damped random scenes of seed 3101 passing.

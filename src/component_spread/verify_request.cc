@@ -50,6 +50,9 @@ std::string take_deck(const VerifyRequest& r, verify::VerifyOptions& o) {
   const auto level = r.level ? std::optional(o.level) : std::nullopt;
   const patching::SheetRun run = patching::sheet_run(*r.sheet_file, level, o.transient);
   o.deck_text = run.deck;
+  o.render_deck_text = [file = *r.sheet_file, level](const circuit::TransientControl& control) {
+    return patching::sheet_run(file, level, control).deck;
+  };
   o.deck_header = spice::read_deck_header(run.deck, *r.sheet_file);
   hold_to_deck(r, *o.deck_header, *r.sheet_file, o);
   return r.machine.empty() ? run.machine : r.machine;

@@ -149,7 +149,8 @@ ScalingOptions patch_options_of(const VerifyOptions& options) {
 }
 
 /// Runs the deck in ngspice, timed into r.ngspice_seconds. One bounded retry
-/// of a generated deck that ngspice aborts: the stiffly stable gear method,
+/// of a deck gearpatch renders (generated, or a sheet as wired) that ngspice
+/// aborts: the stiffly stable gear method,
 /// which damps what trap lets ring at a switching corner, with ngspice's
 /// default charge tolerance (measured: random-2-085's --autoscale deck, a
 /// contact closing the damping switch at 0.84 MU of relative speed, aborted
@@ -160,11 +161,11 @@ spice::Vectors run_deck(const std::string& deck, const circuit::Circuit& circuit
                         spice::Simulator& simulator, VerifyResult& r) {
   const auto start = std::chrono::steady_clock::now();
   const auto with_gear = [&]() -> std::optional<std::string> {
-    if (options.deck_text || control.method == "gear") return std::nullopt;
+    if ((options.deck_text && !options.render_deck_text) || control.method == "gear") return std::nullopt;
     circuit::TransientControl gear = control;
     gear.method = "gear";
     gear.chgtol = 1e-14;
-    return circuit::render_netlist(circuit, gear);
+    return options.deck_text ? options.render_deck_text(gear) : circuit::render_netlist(circuit, gear);
   };
   const spice::Vectors vectors =
       spice::run_with_retry(simulator, deck, options.limits, with_gear, "method=gear chgtol=1e-14", r.retry);

@@ -24,6 +24,10 @@ struct VerifyOptions {
   circuit::Level level = circuit::Level::ideal;
   std::optional<double> tolerance;      ///< fraction of full scale; default per level
   std::optional<std::string> deck_text; ///< a deck a person edited, instead of the generated one
+  /// Renders deck_text again under another transient control, where
+  /// gearpatch writes it (a patch sheet as wired): the retry after an abort
+  /// runs it so, as it runs a generated deck. Empty for a person's deck.
+  std::function<std::string(const circuit::TransientControl&)> render_deck_text;
   /// deck_text's gearpatch header, if it has one: level, autoscale and
   /// transient above must agree with it; its β and machine are checked here.
   std::optional<spice::DeckHeader> deck_header;
