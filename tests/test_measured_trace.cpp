@@ -77,35 +77,46 @@ TEST_CASE("each scope format is read as its manual shows it", "[verify]") {
   CHECK_THROWS_WITH(verify::parse_channel_number("--probe", "CH3=0"), Catch::Contains("write CHANNEL=NUMBER"));
 }
 
-TEST_CASE("the run's start is found where a signal leaves its initial level", "[verify]") {
-  // A ramp leaving 0.3 V at t = 1.2345 ms, sampled every 10 µs with noise and 8-bit steps.
-  std::vector<double> t, y, flat;
-  std::mt19937 random(7);
+namespace {
+
+/// A scope's record of a ramp that leaves 0.3 V at `start` at 2000 V/s and
+/// of a channel that holds 0.5 V, every `interval` seconds, with 10 mV of
+/// noise and 8-bit steps of 78 mV.
+struct RecordedRamp {
+  std::vector<double> t, ramp, flat;
+};
+
+RecordedRamp recorded_ramp(int samples, double interval, double start, unsigned seed) {
+  RecordedRamp r;
+  std::mt19937 random(seed);
   std::normal_distribution<double> gauss(0, 0.01);
   const double lsb = 0.078125;
-  for (int i = 0; i < 1000; ++i) {
-    t.push_back(i * 1e-5);
-    const double clean = 0.3 + std::max(0.0, t.back() - 1.2345e-3) * 2000;
-    y.push_back(std::round((clean + gauss(random)) / lsb) * lsb);
-    flat.push_back(std::round((0.5 + gauss(random)) / lsb) * lsb);
+  for (int i = 0; i < samples; ++i) {
+    r.t.push_back(i * interval);
+    const double clean = 0.3 + std::max(0.0, r.t.back() - start) * 2000;
+    r.ramp.push_back(std::round((clean + gauss(random)) / lsb) * lsb);
+    r.flat.push_back(std::round((0.5 + gauss(random)) / lsb) * lsb);
   }
-  CHECK(verify::find_run_start(t, {flat, y}, 10, "ramp.csv") == Approx(1.2345e-3).margin(2e-5));
-  CHECK_THROWS_WITH(verify::find_run_start(t, {flat}, 10, "flat.csv"), Catch::Contains("give --start T"));
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("the run's start is found where a signal leaves its initial level", "[verify]") {
+  // 1000 samples every 10 µs, the ramp leaving at 1.2345 ms.
+  const RecordedRamp r = recorded_ramp(1000, 1e-5, 1.2345e-3, 7);
+  CHECK(verify::find_run_start(r.t, {r.flat, r.ramp}, 10, "ramp.csv") == Approx(1.2345e-3).margin(2e-5));
+  CHECK_THROWS_WITH(verify::find_run_start(r.t, {r.flat}, 10, "flat.csv"), Catch::Contains("give --start T"));
 }
 
 TEST_CASE("a deep record finds the run's start as closely as a short one", "[verify]") {
-  // The same ramp recorded 30 times as densely: 30000 samples a microsecond
-  // apart, so that twenty samples past the threshold span less than a step.
-  std::vector<double> t, y;
-  std::mt19937 random(11);
-  std::normal_distribution<double> gauss(0, 0.01);
-  const double lsb = 0.078125;
-  for (int i = 0; i < 30000; ++i) {
-    t.push_back(i * 1e-6);
-    const double clean = 0.3 + std::max(0.0, t.back() - 12.345e-3) * 2000;
-    y.push_back(std::round((clean + gauss(random)) / lsb) * lsb);
+  // The same ramp recorded 30 times as densely, with ten draws of the noise:
+  // 30000 samples a microsecond apart, so that twenty samples past the
+  // threshold span less than a step.
+  for (unsigned seed = 11; seed < 21; ++seed) {
+    const RecordedRamp r = recorded_ramp(30000, 1e-6, 12.345e-3, seed);
+    CHECK(verify::find_run_start(r.t, {r.ramp}, 10, "deep.csv") == Approx(12.345e-3).margin(2e-5));
   }
-  CHECK(verify::find_run_start(t, {y}, 10, "deep.csv") == Approx(12.345e-3).margin(2e-5));
 }
 
 TEST_CASE("a channel that jumps starts the run where it jumps", "[verify]") {
